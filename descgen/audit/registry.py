@@ -1,0 +1,95 @@
+"""The rule catalogue: ``@rule`` registers a pure function ``Robot -> Iterator[Finding]``.
+
+A rule's docstring is its documentation (``descgen rules CODE``, SARIF rule help). Codes
+are stable: a retired code is never reused.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+
+from ..findings import Finding, Severity, Where
+from ..model import Robot
+
+CATEGORIES = ("TOPO", "NAME", "UNIT", "INER", "GEOM", "JOINT", "POSE", "SRDF", "CTRL", "FRAME", "TIME")
+_CODE = re.compile(rf"^({'|'.join(CATEGORIES)})\d{{3}}$")
+_HEADINGS = ("## What it does", "## Why is this bad?")
+
+RuleFn = Callable[[Robot], Iterable[Finding]]
+
+
+@dataclass(frozen=True)
+class RuleInfo:
+    code: str
+    name: str
+    severity: Severity
+    doc: str
+    fn: RuleFn
+
+    @property
+    def summary(self) -> str:
+        text = self.doc.split("## What it does", 1)[-1].split("##", 1)[0]
+        return " ".join(text.split())
+
+
+RULES: dict[str, RuleInfo] = {}
+
+
+def rule(code: str, name: str, severity: Severity) -> Callable[[RuleFn], RuleFn]:
+    def register(fn: RuleFn) -> RuleFn:
+        if not _CODE.match(code):
+            raise ValueError(f"rule code {code!r} is not a category prefix plus 3 digits")
+        if code in RULES or any(r.name == name for r in RULES.values()):
+            raise ValueError(f"duplicate rule {code} {name}")
+        doc = fn.__doc__ or ""
+        missing = [h for h in _HEADINGS if h not in doc]
+        if missing:
+            raise ValueError(f"rule {code} doc lacks {missing}")
+        RULES[code] = RuleInfo(code, name, severity, doc, fn)
+        return fn
+
+    return register
+
+
+class Subject:
+    """Anything with a ``subject`` string and a ``where``: links, joints, ..."""
+
+    subject: str
+    where: Where
+
+
+def at(
+    code: str,
+    elem: object,
+    message: str,
+    hint: str,
+    severity: Severity | None = None,
+    subject: str | None = None,
+) -> Finding:
+    """A finding located at a model element (its subject and file:line)."""
+    info = RULES.get(code)
+    sev: Severity = severity or (info.severity if info else "error")
+    subj = subject or getattr(elem, "subject", "") or ""
+    where = getattr(elem, "where", None) or Where("<unknown>")
+    return Finding(code, sev, message, hint, subj, where)
+
+
+def run(robot: Robot, codes: Iterable[str] | None = None) -> list[Finding]:
+    """All registered rules (or the given codes) over one robot, in code order."""
+    from . import rules  # noqa: F401  (registers every rule module)
+
+    wanted = set(codes) if codes is not None else None
+    out: list[Finding] = []
+    for code in sorted(RULES):
+        if wanted is not None and code not in wanted:
+            continue
+        out.extend(RULES[code].fn(robot))
+    return out
+
+
+def iter_rules() -> Iterator[RuleInfo]:
+    from . import rules  # noqa: F401
+
+    yield from (RULES[c] for c in sorted(RULES))

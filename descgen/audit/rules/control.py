@@ -1,0 +1,180 @@
+"""CTRL: the ros2_control block and controllers agree with the joints."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from ...findings import Finding
+from ...model import Controller, Robot
+from ..registry import at, rule
+
+
+def claims(c: Controller) -> list[tuple[str, str]]:
+    """(joint, command interface) pairs a controller claims when active (Jazzy ros2_controllers)."""
+    t = c.type.split("/")[0]
+    if t == "joint_trajectory_controller":
+        return [(str(j), str(i)) for j in _list(c.param("joints")) for i in _list(c.param("command_interfaces"))]
+    if t == "diff_drive_controller":
+        wheels = [*_list(c.param("left_wheel_names")), *_list(c.param("right_wheel_names"))]
+        return [(str(w), "velocity") for w in wheels]
+    if t == "forward_command_controller" or t.endswith("forward_controller"):
+        iface = c.param("interface_name")
+        return [(str(j), str(iface)) for j in _list(c.param("joints"))]
+    return []
+
+
+def state_reads(c: Controller) -> list[tuple[str, str]]:
+    t = c.type.split("/")[0]
+    if t == "joint_trajectory_controller":
+        return [(str(j), str(i)) for j in _list(c.param("joints")) for i in _list(c.param("state_interfaces"))]
+    if t == "diff_drive_controller":
+        if c.param("open_loop") is True:
+            return []
+        iface = "velocity" if c.param("position_feedback") is False else "position"
+        wheels = [*_list(c.param("left_wheel_names")), *_list(c.param("right_wheel_names"))]
+        return [(str(w), iface) for w in wheels]
+    return []
+
+
+def _list(v: object) -> list[object]:
+    if isinstance(v, list | tuple):
+        return list(v)
+    return [] if v is None else [v]
+
+
+@rule("CTRL001", "control-joint-not-in-urdf", "error")
+def control_joint_not_in_urdf(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a ros2_control joint that is not a moving URDF joint.
+    ## Why is this bad?
+    ros2_control fails to load: "Joint 'x' not found in URDF" / "Fixed joints do not make
+    sense in ros2_control".
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    for cj in rc.joints:
+        j = robot.joint(cj.name)
+        if j is None:
+            yield at(
+                "CTRL001",
+                cj,
+                f"ros2_control joint '{cj.name}' is not a URDF joint",
+                "fix the name",
+                subject=f"ros2_control:{cj.name}",
+            )
+        elif j.type == "fixed":
+            yield at(
+                "CTRL001",
+                cj,
+                f"ros2_control joint '{cj.name}' is fixed",
+                "remove it from ros2_control",
+                subject=f"ros2_control:{cj.name}",
+            )
+
+
+@rule("CTRL002", "controller-interface-missing", "error")
+def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a controller that claims a command interface or reads a state interface the
+    hardware does not export.
+    ## Why is this bad?
+    The controller fails to activate; on the robot nothing moves and nothing says why
+    until someone reads the controller_manager log.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    cmd = {(cj.name, i.name) for cj in rc.joints for i in cj.command}
+    state = {(cj.name, i.name) for cj in rc.joints for i in cj.state}
+    for c in rc.controllers:
+        for joint, iface in claims(c):
+            if (joint, iface) not in cmd:
+                yield at(
+                    "CTRL002",
+                    c,
+                    f"controller '{c.name}' claims '{joint}/{iface}', which the hardware does not export",
+                    f"add command: [{iface}] to ros2_control joint '{joint}', or fix the controller",
+                    subject=f"controller:{c.name}",
+                )
+        for joint, iface in state_reads(c):
+            if (joint, iface) not in state:
+                yield at(
+                    "CTRL002",
+                    c,
+                    f"controller '{c.name}' reads state '{joint}/{iface}', which the hardware does not export",
+                    f"add state: [{iface}] to ros2_control joint '{joint}'",
+                    subject=f"controller:{c.name}",
+                )
+
+
+@rule("CTRL003", "no-joint-state-broadcaster", "warning")
+def no_joint_state_broadcaster(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a ros2_control setup with controllers but no joint_state_broadcaster.
+    ## Why is this bad?
+    Nothing publishes measured joint states, so robot_state_publisher shows no motion,
+    or something else fills /joint_states with commands.
+    """
+    rc = robot.ros2_control
+    if rc is None or not rc.controllers:
+        return
+    if not any(c.type.startswith("joint_state_broadcaster/") for c in rc.controllers):
+        yield at(
+            "CTRL003",
+            rc,
+            "no joint_state_broadcaster among the controllers",
+            "add joint_state_broadcaster/JointStateBroadcaster",
+            subject="ros2_control",
+        )
+
+
+@rule("CTRL004", "interface-claimed-twice", "warning")
+def interface_claimed_twice(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a command interface that two controllers claim.
+    ## Why is this bad?
+    Command interfaces are exclusive: the second controller fails to activate
+    ("Resource conflict"). Fine only when they are alternatives never active together.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    owners: dict[tuple[str, str], list[str]] = defaultdict(list)
+    for c in rc.controllers:
+        for key in claims(c):
+            owners[key].append(c.name)
+    for (joint, iface), names in owners.items():
+        if len(names) > 1:
+            c = next(x for x in rc.controllers if x.name == names[1])
+            yield at(
+                "CTRL004",
+                c,
+                f"'{joint}/{iface}' is claimed by {', '.join(names)}",
+                "give each command interface one controller, or activate them exclusively",
+                subject=f"controller:{c.name}",
+            )
+
+
+@rule("CTRL005", "control-joint-listed-twice", "error")
+def control_joint_listed_twice(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a joint listed twice in the ros2_control block.
+    ## Why is this bad?
+    Interfaces get exported twice and the resource manager refuses the duplicate keys.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    seen: set[str] = set()
+    for cj in rc.joints:
+        if cj.name in seen:
+            yield at(
+                "CTRL005",
+                cj,
+                f"joint '{cj.name}' is listed twice in ros2_control",
+                "merge the entries",
+                subject=f"ros2_control:{cj.name}",
+            )
+        seen.add(cj.name)

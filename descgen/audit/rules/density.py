@@ -1,0 +1,59 @@
+"""UNIT: a link's mass must fit its size (catches grams typed as kilograms and back)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ... import inertia, units
+from ...findings import Finding
+from ...model import Robot
+from ..registry import at, rule
+
+
+def density_range(robot: Robot) -> units.Range:
+    ranges = robot.extras.get("ranges")
+    found = ranges.get("density") if isinstance(ranges, dict) else None
+    if isinstance(found, units.Range):
+        return found
+    return units.DEFAULT_RANGES["density"]
+
+
+@rule("UNIT010", "implausible-density", "error")
+def implausible_density(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Divides each link's mass by the volume of its collision primitives (or visual ones
+    when it has no collision) and flags a density outside foam..tungsten (5 to 25000 kg/m^3
+    by default; `plausibility.density` in a spec).
+    ## Why is this bad?
+    A density a thousand times off is a mass in the wrong unit (1200 g written as 1200 kg),
+    which no parser notices and which breaks simulation and the static-torque check.
+    """
+    r = density_range(robot)
+    for lk in robot.links:
+        if lk.inertial is None or lk.inertial.mass is None or lk.inertial.mass <= 0:
+            continue
+        shapes = [c.geometry for c in lk.collisions] or [v.geometry for v in lk.visuals]
+        if not shapes or any(g is None for g in shapes):
+            continue
+        vols = [inertia.volume(g) for g in shapes if g is not None]
+        if any(v is None for v in vols):
+            continue  # meshes: volume unknown without reading them
+        vol = sum(v for v in vols if v is not None)
+        if vol <= 0:
+            continue
+        rho = lk.inertial.mass / vol
+        if r.low <= rho <= r.high:
+            continue
+        hint = "is the mass in the wrong unit (g vs kg)? or the geometry (mm vs m)?"
+        if rho > r.high and r.low <= rho / 1000 <= r.high:
+            hint = "the mass looks 1000x too large: grams written as kilograms?"
+        elif rho < r.low and r.low <= rho * 1000 <= r.high:
+            hint = "the mass looks 1000x too small (kilograms written as grams?), or the geometry 10x too large"
+        yield at(
+            "UNIT010",
+            lk.inertial,
+            f"link '{lk.name}' mass {lk.inertial.mass:.6g} kg in {vol:.4g} m^3 of geometry "
+            f"implies {rho:.4g} kg/m^3, outside {r.low:g} to {r.high:g}",
+            hint,
+            subject=lk.subject,
+        )

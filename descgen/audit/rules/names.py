@@ -1,0 +1,64 @@
+"""NAME: unique and usable names."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+from ...findings import Finding
+from ...model import Joint, Link, Robot
+from ..registry import at, rule
+
+_IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+@rule("NAME001", "duplicate-link-name", "error")
+def duplicate_link_name(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds two links with the same name.
+    ## Why is this bad?
+    urdfdom refuses the file; tf would have two frames with one id.
+    """
+    seen: dict[str, object] = {}
+    for lk in robot.links:
+        if lk.name in seen:
+            first = getattr(seen[lk.name], "where", None)
+            yield at(
+                "NAME001",
+                lk,
+                f"duplicate link name '{lk.name}' (first at {first})",
+                "rename one of them; each rigid body needs one identity",
+            )
+        else:
+            seen[lk.name] = lk
+
+
+@rule("NAME002", "duplicate-joint-name", "error")
+def duplicate_joint_name(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds two joints with the same name.
+    ## Why is this bad?
+    urdfdom refuses the file; joint_states and ros2_control address joints by name.
+    """
+    seen: dict[str, object] = {}
+    for j in robot.joints:
+        if j.name in seen:
+            first = getattr(seen[j.name], "where", None)
+            yield at("NAME002", j, f"duplicate joint name '{j.name}' (first at {first})", "rename one of them")
+        else:
+            seen[j.name] = j
+
+
+@rule("NAME003", "unusable-name", "warning")
+def unusable_name(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags link and joint names that are not plain identifiers ([A-Za-z][A-Za-z0-9_]*).
+    ## Why is this bad?
+    ros2_control builds `<joint>/<interface>` and parameter paths such as `gains.<joint>.p`
+    from joint names; tf frame ids must not start with '/'.
+    """
+    elems: list[Link | Joint] = [*robot.links, *robot.joints]
+    for elem in elems:
+        if not _IDENT.match(elem.name):
+            message = f"name '{elem.name}' is not a plain identifier"
+            yield at("NAME003", elem, message, "use letters, digits and _, starting with a letter")

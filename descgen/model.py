@@ -1,0 +1,420 @@
+"""The robot model: immutable, SI only (m, rad, kg, s, N, N*m).
+
+Specs and third-party descriptions are both read into this model; everything downstream
+(rules, kinematics, renderers) reads only this. Fields that a broken description may
+lack are Optional, so a defective robot can still be modelled and audited.
+Each element keeps ``where`` (file, line) for messages.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from .findings import Where
+
+Vec3 = tuple[float, float, float]
+NOWHERE = Where("<unknown>")
+
+JOINT_TYPES = ("fixed", "revolute", "continuous", "prismatic", "floating", "planar")
+MOVABLE = ("revolute", "continuous", "prismatic", "floating", "planar")
+ONE_DOF = ("revolute", "continuous", "prismatic")
+
+
+@dataclass(frozen=True)
+class Pose:
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Box:
+    size: Vec3
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    radius: float
+    length: float
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: float
+
+
+@dataclass(frozen=True)
+class Mesh:
+    filename: str
+    scale: Vec3 = (1.0, 1.0, 1.0)
+
+
+Geometry = Box | Cylinder | Sphere | Mesh
+
+
+@dataclass(frozen=True)
+class Material:
+    name: str
+    rgba: tuple[float, float, float, float] | None = None
+    texture: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Visual:
+    geometry: Geometry | None
+    origin: Pose = Pose()
+    name: str | None = None
+    material: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Collision:
+    geometry: Geometry | None
+    origin: Pose = Pose()
+    name: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Inertia:
+    ixx: float
+    ixy: float
+    ixz: float
+    iyy: float
+    iyz: float
+    izz: float
+
+    def matrix(self) -> tuple[Vec3, Vec3, Vec3]:
+        return (
+            (self.ixx, self.ixy, self.ixz),
+            (self.ixy, self.iyy, self.iyz),
+            (self.ixz, self.iyz, self.izz),
+        )
+
+
+@dataclass(frozen=True)
+class Inertial:
+    mass: float | None
+    origin: Pose = Pose()
+    inertia: Inertia | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Link:
+    name: str
+    visuals: tuple[Visual, ...] = ()
+    collisions: tuple[Collision, ...] = ()
+    inertial: Inertial | None = None
+    where: Where = NOWHERE
+    source: str | None = None
+    part: str | None = None  # the repeated part this link is an instance of
+    description: str | None = None
+
+    @property
+    def subject(self) -> str:
+        return f"link:{self.name}"
+
+
+@dataclass(frozen=True)
+class Limit:
+    lower: float | None = None
+    upper: float | None = None
+    effort: float | None = None
+    velocity: float | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    damping: float = 0.0
+    friction: float = 0.0
+
+
+@dataclass(frozen=True)
+class Mimic:
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class SafetyController:
+    k_velocity: float
+    k_position: float = 0.0
+    soft_lower_limit: float = 0.0
+    soft_upper_limit: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    type: str
+    parent: str | None
+    child: str | None
+    origin: Pose = Pose()
+    axis: Vec3 | None = (1.0, 0.0, 0.0)
+    limit: Limit | None = None
+    dynamics: Dynamics | None = None
+    mimic: Mimic | None = None
+    safety: SafetyController | None = None
+    where: Where = NOWHERE
+    source: str | None = None
+    part: str | None = None
+    description: str | None = None
+
+    @property
+    def subject(self) -> str:
+        return f"joint:{self.name}"
+
+    @property
+    def movable(self) -> bool:
+        return self.type in MOVABLE
+
+    def outside_limits(self, value: float) -> bool:
+        """True when a bounded joint (revolute, prismatic) is given a value beyond its limits."""
+        lm = self.limit
+        if self.type not in ("revolute", "prismatic") or lm is None or lm.lower is None or lm.upper is None:
+            return False
+        return not lm.lower - 1e-12 <= value <= lm.upper + 1e-12
+
+    def range_text(self) -> str:
+        lm = self.limit
+        if lm is None or lm.lower is None or lm.upper is None:
+            return "unbounded"
+        return f"[{self.show(lm.lower)}, {self.show(lm.upper)}]"
+
+    def show(self, value: float) -> str:
+        """A joint value for people: metres for prismatic, radians and degrees otherwise."""
+        if self.type == "prismatic":
+            return f"{value:.6g} m"
+        return f"{value:.6g} rad ({math.degrees(value):.6g} deg)"
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """A sensor frame: ``link`` on a fixed joint; cameras also get ``optical_frame``."""
+
+    name: str
+    type: str  # camera | lidar | imu | generic
+    link: str
+    joint: str
+    optical_frame: str | None = None
+    optical_joint: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Interface:
+    name: str
+    min: float | None = None
+    max: float | None = None
+    initial_value: float | None = None
+
+
+@dataclass(frozen=True)
+class ControlJoint:
+    name: str
+    command: tuple[Interface, ...] = ()
+    state: tuple[Interface, ...] = ()
+    on_limit: str = "reject"  # reject | clip: what the command/state boundary does beyond limits
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Controller:
+    name: str
+    type: str
+    params: tuple[tuple[str, object], ...] = ()
+    where: Where = NOWHERE
+
+    def param(self, key: str, default: object = None) -> object:
+        return dict(self.params).get(key, default)
+
+
+@dataclass(frozen=True)
+class Ros2Control:
+    name: str
+    type: str = "system"
+    plugin: str = "mock_components/GenericSystem"
+    params: tuple[tuple[str, str], ...] = ()
+    joints: tuple[ControlJoint, ...] = ()
+    update_rate: float | None = None  # Hz
+    controllers: tuple[Controller, ...] = ()
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Group:
+    name: str
+    links: tuple[str, ...] = ()
+    joints: tuple[str, ...] = ()
+    chains: tuple[tuple[str, str], ...] = ()
+    subgroups: tuple[str, ...] = ()
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class GroupState:
+    name: str
+    group: str
+    values: tuple[tuple[str, float], ...]
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class EndEffector:
+    name: str
+    group: str
+    parent_link: str
+    parent_group: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class VirtualJoint:
+    name: str
+    type: str
+    parent_frame: str
+    child_link: str
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class DisabledPair:
+    link1: str
+    link2: str
+    reason: str
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Semantic:
+    groups: tuple[Group, ...] = ()
+    states: tuple[GroupState, ...] = ()
+    end_effectors: tuple[EndEffector, ...] = ()
+    virtual_joints: tuple[VirtualJoint, ...] = ()
+    passive_joints: tuple[str, ...] = ()
+    disabled_collisions: tuple[DisabledPair, ...] = ()
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class FrameMeasurement:
+    frame: str
+    xyz: Vec3
+    tolerance: float  # per axis, metres
+    relative_to: str | None = None  # None: the root link
+    source: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class KnownPose:
+    name: str
+    joints: tuple[tuple[str, float], ...] = ()  # values not listed are zero
+    frames: tuple[FrameMeasurement, ...] = ()
+    source: str | None = None
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Constant:
+    """A named measured value from the spec's ``constants:`` (SI), kept for readable outputs."""
+
+    name: str
+    value: float
+    written: str
+    source: str | None = None
+    description: str | None = None
+
+
+@dataclass(frozen=True)
+class Robot:
+    name: str
+    links: tuple[Link, ...] = ()
+    joints: tuple[Joint, ...] = ()
+    materials: tuple[Material, ...] = ()
+    sensors: tuple[Sensor, ...] = ()
+    ros2_control: Ros2Control | None = None
+    semantic: Semantic | None = None
+    known_poses: tuple[KnownPose, ...] = ()
+    constants: tuple[Constant, ...] = ()
+    # (subject, field path) -> constant name, e.g. ("joint:left_wheel_joint", "origin.xyz.1") -> "-half_track"
+    refs: tuple[tuple[tuple[str, str], str], ...] = ()
+    description: str | None = None
+    where: Where = NOWHERE
+    source_file: str | None = None
+    spec_hash: str | None = None
+    extras: dict[str, object] = field(default_factory=dict, compare=False, hash=False)
+
+    # Lookups. Broken descriptions may repeat names; these return the first.
+    def link(self, name: str) -> Link | None:
+        return next((lk for lk in self.links if lk.name == name), None)
+
+    def joint(self, name: str) -> Joint | None:
+        return next((j for j in self.joints if j.name == name), None)
+
+    def child_joints(self, link: str) -> Iterator[Joint]:
+        return (j for j in self.joints if j.parent == link)
+
+    def parent_joint(self, link: str) -> Joint | None:
+        return next((j for j in self.joints if j.child == link), None)
+
+    def roots(self) -> list[str]:
+        children = {j.child for j in self.joints}
+        return list(dict.fromkeys(lk.name for lk in self.links if lk.name not in children))
+
+    def root(self) -> str | None:
+        roots = self.roots()
+        return roots[0] if len(roots) == 1 else None
+
+    def chain_joints(self, base: str, tip: str) -> list[Joint]:
+        """Joints from ``base`` down to ``tip`` (empty if ``base`` is not above ``tip``)."""
+        path = self.path_to_root(tip)
+        for i, j in enumerate(path):
+            if j.parent == base:
+                return path[i:]
+        return []
+
+    def group_joints(self, group: str) -> list[Joint]:
+        """Every joint of a planning group, in tree order (chains, joints, links' parent joints, subgroups)."""
+        sem = self.semantic
+        if sem is None:
+            return []
+        out: list[Joint] = []
+        todo, seen = [group], set()
+        while todo:
+            g = next((x for x in sem.groups if x.name == todo[0]), None)
+            seen.add(todo.pop(0))
+            if g is None:
+                continue
+            for base, tip in g.chains:
+                out += self.chain_joints(base, tip)
+            out += [j for n in g.joints if (j := self.joint(n)) is not None]
+            out += [j for n in g.links if (j := self.parent_joint(n)) is not None]
+            todo += [s for s in g.subgroups if s not in seen]
+        unique: list[Joint] = []
+        for j in out:
+            if all(j is not u for u in unique):
+                unique.append(j)
+        return unique
+
+    def path_to_root(self, link: str) -> list[Joint]:
+        """Joints from the root down to ``link`` (empty for the root); stops on cycles."""
+        chain: list[Joint] = []
+        seen: set[str] = set()
+        cur = link
+        while cur not in seen:
+            seen.add(cur)
+            j = self.parent_joint(cur)
+            if j is None or j.parent is None:
+                break
+            chain.append(j)
+            cur = j.parent
+        chain.reverse()
+        return chain

@@ -1,0 +1,440 @@
+"""Pydantic v2 models of the spec YAML: structure, names and fixed-kind quantities.
+
+Unknown keys are errors (``extra="forbid"``). Every model is frozen. Cross-element rules
+(names exist, one root, limits ordered...) are not here: they are rules over the built
+model in ``descgen/audit/rules``, shared with ``descgen audit``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    StringConstraints,
+    WithJsonSchema,
+    model_validator,
+)
+
+from .quantity import ZERO, ZERO_ANGLE, Angle, Frequency, InertiaQ, Length, Mass, Measured, Raw, Size, Tolerance, error
+
+NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
+Name = Annotated[str, StringConstraints(pattern=NAME_PATTERN, max_length=128)]
+"""Link, joint, frame, controller and group names. ros2_control builds ``<joint>/<interface>``
+and parameter paths from them, so they are plain identifiers (see reference/conventions.md)."""
+
+Text = Annotated[str, StringConstraints(max_length=4000)]
+Source = Annotated[
+    str, BeforeValidator(lambda v: str(v) if isinstance(v, int) else v), StringConstraints(max_length=200)
+]
+
+_AXES = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
+
+
+def _axis(value: object) -> object:
+    if isinstance(value, str):
+        text = value.strip().lower()
+        sign = -1.0 if text.startswith("-") else 1.0
+        key = text.lstrip("+-")
+        if key in _AXES:
+            return tuple(sign * c + 0.0 for c in _AXES[key])
+        raise error("SPEC003", f"axis '{value}' is not one of +x, -x, +y, -y, +z, -z", "write e.g. +y or [0, 1, 0]")
+    if isinstance(value, list | tuple) and any(isinstance(c, str) for c in value):
+        raise error("SPEC003", "axis components are plain numbers (a direction has no unit)", "write e.g. [0, 1, 0]")
+    return value
+
+
+def _finite(value: object) -> object:
+    if isinstance(value, float) and not math.isfinite(value):
+        raise error("SPEC003", "not a finite number", "write a finite number")
+    return value
+
+
+Number = Annotated[float, BeforeValidator(_finite)]
+Axis = Annotated[
+    tuple[Number, Number, Number],
+    BeforeValidator(_axis),
+    WithJsonSchema(
+        {
+            "anyOf": [
+                {"type": "string", "enum": ["+x", "-x", "+y", "-y", "+z", "-z", "x", "y", "z"]},
+                {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3},
+            ]
+        }
+    ),
+]
+
+
+def _one_or_many(value: object) -> object:
+    return [value] if isinstance(value, dict) else value
+
+
+class Base(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Origin(Base):
+    """Pose of a child frame in its parent: xyz, then roll-pitch-yaw about the fixed axes."""
+
+    xyz: tuple[Length, Length, Length] = (ZERO, ZERO, ZERO)
+    rpy: tuple[Angle, Angle, Angle] = (ZERO_ANGLE, ZERO_ANGLE, ZERO_ANGLE)
+    source: Source | None = None
+
+
+class BoxSpec(Base):
+    size: tuple[Size, Size, Size]
+
+
+class _Round(Base):
+    radius: Size | None = None
+    diameter: Size | None = None
+
+    @model_validator(mode="after")
+    def _one_size(self) -> _Round:
+        if (self.radius is None) == (self.diameter is None):
+            raise error("SPEC004", "give exactly one of radius and diameter", "keep the one you measured")
+        return self
+
+    @property
+    def r(self) -> float:
+        if self.radius is not None:
+            return float(self.radius.si)
+        assert self.diameter is not None  # guaranteed by _one_size
+        return float(self.diameter.si) / 2
+
+
+class CylinderSpec(_Round):
+    length: Size
+
+
+class SphereSpec(_Round):
+    pass
+
+
+class MeshSpec(Base):
+    filename: Annotated[str, StringConstraints(min_length=1, max_length=1000)]
+    scale: tuple[Number, Number, Number] = (1.0, 1.0, 1.0)
+
+
+class GeometrySpec(Base):
+    box: BoxSpec | None = None
+    cylinder: CylinderSpec | None = None
+    sphere: SphereSpec | None = None
+    mesh: MeshSpec | None = None
+
+    @model_validator(mode="after")
+    def _exactly_one(self) -> GeometrySpec:
+        given = [k for k in ("box", "cylinder", "sphere", "mesh") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise error(
+                "SPEC004",
+                "a geometry is exactly one of box, cylinder, sphere, mesh",
+                "keep one shape per visual or collision; add another entry for more",
+            )
+        return self
+
+
+class MaterialSpec(Base):
+    name: Annotated[str, StringConstraints(min_length=1, max_length=200)]
+    rgba: tuple[Number, Number, Number, Number] | None = None
+    texture: Annotated[str, StringConstraints(max_length=1000)] | None = None
+
+    @model_validator(mode="after")
+    def _colour(self) -> MaterialSpec:
+        if self.rgba is None and self.texture is None:
+            raise error(
+                "SPEC004",
+                f"material '{self.name}' needs rgba or texture",
+                "write rgba: [r, g, b, a] with values 0 to 1",
+            )
+        if self.rgba is not None and not all(0.0 <= c <= 1.0 for c in self.rgba):
+            raise error("SPEC003", "rgba components are between 0 and 1", "divide 0-255 values by 255")
+        return self
+
+
+class VisualSpec(Base):
+    name: Annotated[str, StringConstraints(max_length=200)] | None = None
+    origin: Origin = Origin()
+    geometry: GeometrySpec
+    material: Annotated[str, StringConstraints(min_length=1, max_length=200)] | None = None
+    source: Source | None = None
+
+
+class CollisionSpec(Base):
+    name: Annotated[str, StringConstraints(max_length=200)] | None = None
+    origin: Origin = Origin()
+    geometry: GeometrySpec
+    source: Source | None = None
+
+
+class InertiaSpec(Base):
+    ixx: InertiaQ
+    iyy: InertiaQ
+    izz: InertiaQ
+    ixy: InertiaQ = ZERO
+    ixz: InertiaQ = ZERO
+    iyz: InertiaQ = ZERO
+
+
+class InertialSpec(Base):
+    """Mass, centre of mass, and either a tensor or ``from: collision|visual``.
+
+    With ``from``, the tensor is that of the first collision (or visual) primitive of
+    uniform density, about its own centroid, rotated into the link frame. The centre of
+    mass is ``origin.xyz`` when given, else the primitive's centre.
+    """
+
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+    mass: Mass
+    origin: Origin | None = None
+    inertia: InertiaSpec | None = None
+    from_: Literal["collision", "visual"] | None = Field(default=None, alias="from")
+    source: Source | None = None
+
+    @model_validator(mode="after")
+    def _tensor(self) -> InertialSpec:
+        if (self.inertia is None) == (self.from_ is None):
+            raise error(
+                "SPEC004",
+                "give exactly one of inertia and from",
+                "write inertia: {ixx: ..., iyy: ..., izz: ...} or from: collision",
+            )
+        return self
+
+
+class LinkBody(Base):
+    visual: Annotated[list[VisualSpec], BeforeValidator(_one_or_many)] = []
+    collision: Annotated[list[CollisionSpec], BeforeValidator(_one_or_many)] = []
+    inertial: InertialSpec | None = None
+    source: Source | None = None
+    description: Text | None = None
+
+
+class LinkSpec(LinkBody):
+    name: Name
+
+
+class LimitSpec(Base):
+    """Units follow the joint type: angles or lengths, N*m or N, rad/s or m/s."""
+
+    lower: Raw | None = None
+    upper: Raw | None = None
+    effort: Raw
+    velocity: Raw
+    source: Source | None = None
+
+
+class DynamicsSpec(Base):
+    damping: Raw | None = None
+    friction: Raw | None = None
+    source: Source | None = None
+
+
+class MimicSpec(Base):
+    joint: Name
+    multiplier: Number = 1.0
+    offset: Raw | None = None
+
+
+class SafetySpec(Base):
+    soft_lower_limit: Raw | None = None
+    soft_upper_limit: Raw | None = None
+    k_position: Raw | None = None
+    k_velocity: Raw
+
+
+JointType = Literal["fixed", "revolute", "continuous", "prismatic", "floating", "planar"]
+
+
+class JointBody(Base):
+    type: JointType
+    parent: Name
+    axis: Axis | None = None
+    limit: LimitSpec | None = None
+    dynamics: DynamicsSpec | None = None
+    mimic: MimicSpec | None = None
+    safety_controller: SafetySpec | None = None
+    source: Source | None = None
+    description: Text | None = None
+
+
+class JointSpec(JointBody):
+    name: Name
+    child: Name
+    origin: Origin = Origin()
+
+
+class PartInstance(Base):
+    link: Name
+    joint: Name
+    origin: Origin = Origin()
+    source: Source | None = None
+
+
+class PartSpec(Base):
+    """A part built more than once (left/right wheel, fingers): declared once, instanced
+    with per-instance names and origin. The Xacro output makes it one macro."""
+
+    name: Name
+    link: LinkBody = LinkBody()
+    joint: JointBody
+    instances: Annotated[list[PartInstance], Field(min_length=1)]
+    source: Source | None = None
+    description: Text | None = None
+
+
+class SensorSpec(Base):
+    """A sensor frame ``<name>_link`` on a fixed joint ``<name>_joint``. A camera also gets
+    ``<name>_optical_frame`` (z forward, x right, y down; REP 103)."""
+
+    name: Name
+    type: Literal["camera", "lidar", "imu", "generic"]
+    parent: Name
+    origin: Origin = Origin()
+    link: LinkBody = LinkBody()
+    source: Source | None = None
+    description: Text | None = None
+
+
+class InterfaceLimitSpec(Base):
+    min: Raw | None = None
+    max: Raw | None = None
+
+
+class ControlJointSpec(Base):
+    name: Name
+    command: list[Literal["position", "velocity", "acceleration", "effort"]] = []
+    state: list[Literal["position", "velocity", "acceleration", "effort"]] = []
+    initial_position: Raw | None = None
+    on_limit: Literal["reject", "clip"] = "reject"
+    source: Source | None = None
+
+
+class HardwareSpec(Base):
+    plugin: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")] = "mock_components/GenericSystem"
+    params: dict[Name, str | int | float | bool] = {}
+
+
+ParamValue = Any
+
+
+class ControllerSpec(Base):
+    name: Name
+    type: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+$")]
+    params: dict[str, ParamValue] = {}
+    source: Source | None = None
+
+
+class Ros2ControlSpec(Base):
+    name: Name
+    type: Literal["system", "actuator", "sensor"] = "system"
+    hardware: HardwareSpec = HardwareSpec()
+    update_rate: Frequency
+    joints: list[ControlJointSpec] = []
+    controllers: list[ControllerSpec] = []
+    source: Source | None = None
+
+
+class ChainSpec(Base):
+    base: Name
+    tip: Name
+
+
+class GroupSpec(Base):
+    name: Name
+    chain: ChainSpec | None = None
+    links: list[Name] = []
+    joints: list[Name] = []
+    subgroups: list[Name] = []
+
+
+class GroupStateSpec(Base):
+    name: Name
+    group: Name
+    pose: Name | None = None  # take the joint values of a known pose
+    joints: dict[Name, Raw] = {}
+
+    @model_validator(mode="after")
+    def _values(self) -> GroupStateSpec:
+        if self.pose is None and not self.joints:
+            raise error(
+                "SPEC004",
+                f"group state '{self.name}' needs pose or joints",
+                "name a known pose (pose: ready) or list joint values",
+            )
+        return self
+
+
+class EndEffectorSpec(Base):
+    name: Name
+    group: Name
+    parent_link: Name
+    parent_group: Name | None = None
+
+
+class VirtualJointSpec(Base):
+    name: Name
+    type: Literal["fixed", "floating", "planar"]
+    parent_frame: Name
+    child_link: Name
+
+
+class DisabledPairSpec(Base):
+    link1: Name
+    link2: Name
+    reason: Annotated[str, StringConstraints(max_length=200)] = "User"
+
+
+class SemanticSpec(Base):
+    virtual_joints: list[VirtualJointSpec] = []
+    groups: list[GroupSpec] = []
+    group_states: list[GroupStateSpec] = []
+    end_effectors: list[EndEffectorSpec] = []
+    passive_joints: list[Name] = []
+    disable_collisions: list[DisabledPairSpec] = []
+
+
+class FrameMeasurementSpec(Base):
+    frame: Name
+    xyz: tuple[Length, Length, Length]
+    tolerance: Tolerance
+    relative_to: Name | None = None
+    source: Source | None = None
+
+
+class KnownPoseSpec(Base):
+    name: Name
+    joints: dict[Name, Raw] = {}
+    frames: list[FrameMeasurementSpec] = []
+    source: Source | None = None
+    description: Text | None = None
+
+
+class RangeSpec(Base):
+    min: Raw | None = None
+    max: Raw | None = None
+
+
+class RobotSpec(Base):
+    """One robot. See specs/warehouse_arm.yaml for a complete example."""
+
+    name: Name
+    description: Text | None = None
+    require_sources: bool = False
+    plausibility: dict[str, RangeSpec] = {}
+    materials: list[MaterialSpec] = []
+    links: list[LinkSpec] = []
+    joints: list[JointSpec] = []
+    parts: list[PartSpec] = []
+    sensors: list[SensorSpec] = []
+    ros2_control: Ros2ControlSpec | None = None
+    semantic: SemanticSpec | None = None
+    known_poses: list[KnownPoseSpec] = []
+
+
+__all__ = ["Measured", "RobotSpec"]

@@ -1,0 +1,174 @@
+"""Pydantic field types for written quantities.
+
+A quantity field accepts ``"300 mm"`` or ``{value: "300 mm", source: M17}``. Fields whose
+kind is fixed (a box side is a length) are converted and range-checked here, during
+validation. Fields whose kind depends on something else (a joint limit is an angle or a
+length depending on the joint type) are kept as :class:`Written` and converted by the
+builder with the same :func:`descgen.units.to_si`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Annotated, Any
+
+from pydantic import BeforeValidator, ValidationInfo, WithJsonSchema
+from pydantic_core import PydanticCustomError
+
+from .. import units
+
+QUANTITY_SCHEMA: dict[str, Any] = {
+    "anyOf": [
+        {"type": "string", "description": 'a number and a unit, e.g. "300 mm"'},
+        {"type": "number", "const": 0},
+        {
+            "type": "object",
+            "properties": {"value": {"type": "string"}, "source": {"type": "string"}},
+            "required": ["value"],
+            "additionalProperties": False,
+        },
+    ]
+}
+
+
+@dataclass(frozen=True)
+class Written:
+    """A value as written in the spec, with its source; not yet converted."""
+
+    value: object
+    source: str | None = None
+
+    @property
+    def text(self) -> str:
+        return str(self.value)
+
+
+@dataclass(frozen=True)
+class Measured:
+    """A converted value: SI magnitude, what was written, its source."""
+
+    si: float
+    text: str
+    kind: str
+    source: str | None = None
+
+
+def error(code: str, message: str, hint: str) -> PydanticCustomError:
+    # Messages carry user text, which may contain braces: pass everything through ctx.
+    return PydanticCustomError(code, "{message}", {"message": message, "hint": hint})
+
+
+def unwrap(value: object) -> Written:
+    """Split the ``{value, source}`` form; pass plain values through."""
+    if isinstance(value, Written):
+        return value
+    if isinstance(value, dict):
+        extra = sorted(set(value) - {"value", "source"})
+        if extra:
+            raise error("SPEC001", f"unknown key '{extra[0]}' in a quantity", "a quantity takes only value and source")
+        if "value" not in value:
+            raise error(
+                "SPEC002", "a quantity written as a mapping needs 'value'", 'write {value: "300 mm", source: M01}'
+            )
+        source = value.get("source")
+        if source is not None and not isinstance(source, str | int):
+            raise error("SPEC003", "source must be text, e.g. M17", "write the measurement's row ID")
+        return Written(value["value"], None if source is None else str(source))
+    return Written(value)
+
+
+def check_range(si: float, text: str, role: str, ranges: dict[str, units.Range]) -> None:
+    r = ranges.get(role)
+    if r is None or si == 0:
+        return
+    mag = abs(si)
+    if r.low <= mag <= r.high:
+        return
+    shown = units.describe_si(si, r.kind)
+    lo = units.describe_si(r.low, r.kind)
+    hi = units.describe_si(r.high, r.kind)
+    hint = f"if it is right, widen plausibility.{role} in the spec"
+    if mag > r.high and r.low <= mag / 1000 <= r.high:
+        guess = {"length": "mm", "mass": "g"}.get(r.kind)
+        thousand = (
+            f'was it measured in {guess}? e.g. "{_number(text)} {guess}"'
+            if guess
+            else "is it a thousand times too large?"
+        )
+        hint = f"{thousand}; {hint}"
+    elif mag < r.low and r.low <= mag * 1000 <= r.high:
+        guess = {"length": "m", "mass": "kg"}.get(r.kind)
+        thousand = (
+            f'was it measured in {guess}? e.g. "{_number(text)} {guess}"'
+            if guess
+            else "is it a thousand times too small?"
+        )
+        hint = f"{thousand}; {hint}"
+    raise error(
+        "UNIT004",
+        f'"{text}" (= {shown}) is outside the plausible range for {role.replace("_", " ")}: {lo} to {hi}',
+        hint,
+    )
+
+
+def _number(text: str) -> str:
+    head = text.strip().split(" ", 1)[0]
+    return head if head else text
+
+
+def convert(w: Written, kind: str, role: str | None, ranges: dict[str, units.Range]) -> Measured:
+    try:
+        si = units.to_si(w.value, kind)
+    except units.QuantityError as exc:
+        raise error(exc.code, exc.message, exc.hint) from None
+    if role is not None:
+        check_range(si, w.text, role, ranges)
+    return Measured(si, w.text, kind, w.source)
+
+
+def _ranges(info: ValidationInfo | None) -> dict[str, units.Range]:
+    ctx = info.context if info is not None and isinstance(info.context, dict) else {}
+    ranges = ctx.get("ranges")
+    return ranges if isinstance(ranges, dict) else units.DEFAULT_RANGES
+
+
+def _measured(kind: str, role: str | None) -> Callable[[object, ValidationInfo], Measured]:
+    def validate(value: object, info: ValidationInfo) -> Measured:
+        if isinstance(value, Measured):
+            return value
+        return convert(unwrap(value), kind, role, _ranges(info))
+
+    return validate
+
+
+def _written(value: object) -> Written:
+    w = unwrap(value)
+    if not isinstance(w.value, str | int | float) or isinstance(w.value, bool):
+        raise error("UNIT001", "expected a quantity with a unit", 'write e.g. "300 mm" or "-90 deg"')
+    if isinstance(w.value, float) and not math.isfinite(w.value):
+        raise error("UNIT002", "not a finite number", "write a finite value")
+    return w
+
+
+def Q(kind: str, role: str | None = None) -> Any:  # noqa: N802 - reads as a type
+    """``Annotated[Measured, …]`` for a field of one kind and plausibility role."""
+    example = units.KINDS[kind].example
+    schema = dict(QUANTITY_SCHEMA, examples=[example])
+    return Annotated[Measured, BeforeValidator(_measured(kind, role)), WithJsonSchema(schema)]
+
+
+Length = Q("length", "offset")
+Size = Q("length", "size")
+Angle = Q("angle", "angle")
+Mass = Q("mass", "mass")
+InertiaQ = Q("inertia")
+Tolerance = Q("length", "tolerance")
+Frequency = Q("frequency", "frequency")
+Duration = Q("time")
+Raw = Annotated[Written, BeforeValidator(_written), WithJsonSchema(QUANTITY_SCHEMA)]
+"""A quantity whose kind the builder decides (joint limits, joint values)."""
+
+ZERO = Measured(0.0, "0", "length")
+ZERO_ANGLE = Measured(0.0, "0", "angle")

@@ -1,0 +1,217 @@
+"""Quantities: the only pint registry, and the only place a unit is converted to SI.
+
+Every dimensional value in a spec is text with an explicit unit (``"300 mm"``,
+``"-90 deg"``, ``"30 rpm"``). :func:`to_si` reads it with pint, checks that it is the
+kind of quantity the field wants, and returns metres, radians, kilograms, seconds,
+newtons or newton-metres. Nothing downstream sees a unit again.
+
+pint pitfalls handled here (see STYLE.md):
+- bad text raises more than ``PintError`` (AssertionError, TokenError, ZeroDivisionError);
+- ``"1,5 m"`` reads as 15 m, so commas are rejected first;
+- ``"nan m"`` parses, hence the finiteness check;
+- the radian is dimensionless, so ``"1 Hz"`` would pass as 1 rad/s and a bare ``"3"``
+  as an angle: angle-bearing kinds must name an angle unit, and frequencies must not;
+- ``"40 J"`` has the dimensions of a torque, so energy units are refused for torques.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from decimal import Decimal
+from typing import Any
+
+import pint
+
+ureg: pint.UnitRegistry[Any] = pint.UnitRegistry()
+"""The project's one registry. Never create another (quantities from two registries
+cannot be combined)."""
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A kind of physical quantity a field accepts."""
+
+    name: str
+    dimensionality: str  # pint dimensionality, ignoring angles
+    si_unit: str  # what the value is converted to
+    radians: tuple[int, ...]  # allowed powers of an angle unit (rad is dimensionless in pint)
+    example: str
+
+
+KINDS: dict[str, Kind] = {
+    k.name: k
+    for k in (
+        Kind("length", "[length]", "m", (0,), "300 mm"),
+        Kind("angle", "[]", "rad", (1,), "-90 deg"),
+        Kind("mass", "[mass]", "kg", (0,), "1200 g"),
+        Kind("time", "[time]", "s", (0,), "2 s"),
+        Kind("frequency", "1/[time]", "Hz", (0,), "100 Hz"),
+        Kind("linear_velocity", "[length]/[time]", "m/s", (0,), "0.1 m/s"),
+        Kind("angular_velocity", "1/[time]", "rad/s", (1,), "90 deg/s"),
+        Kind("force", "[force]", "N", (0,), "500 N"),
+        Kind("torque", "[force]*[length]", "N*m", (0,), "40 N*m"),
+        Kind("inertia", "[mass]*[length]**2", "kg*m**2", (0,), "0.01 kg*m^2"),
+        Kind("density", "[mass]/[length]**3", "kg/m**3", (0,), "2700 kg/m^3"),
+        # joint dynamics and safety-controller gains, in URDF's units per joint type
+        Kind("linear_damping", "[force]*[time]/[length]", "N*s/m", (0,), "5 N*s/m"),
+        Kind("angular_damping", "[force]*[length]*[time]", "N*m*s/rad", (-1, 0), "0.5 N*m*s/rad"),
+        Kind("linear_stiffness_gain", "1/[time]", "1/s", (0,), "100 1/s"),
+        Kind("angular_stiffness_gain", "1/[time]", "1/s", (0,), "100 1/s"),
+    )
+}
+
+_ENERGY = ureg.get_dimensionality("[energy]")
+
+
+class QuantityError(ValueError):
+    """A quantity text that cannot be used; ``code`` is the finding code."""
+
+    def __init__(self, code: str, message: str, hint: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+        self.hint = hint
+
+
+def _a(kind_name: str) -> str:
+    words = kind_name.replace("_", " ")
+    return ("an " if words[0] in "aeiou" else "a ") + words
+
+
+def _radian_power(q: pint.Quantity[Any]) -> int:
+    _, root = ureg.get_root_units(q.units)
+    return int(dict(root._units).get("radian", 0))  # type: ignore[arg-type]
+
+
+def parse(text: str) -> pint.Quantity[Any]:
+    """Read quantity text with pint; refuse text that pint would misread."""
+    stripped = text.strip()
+    if not stripped:
+        raise QuantityError("UNIT002", "empty quantity", 'write a value and a unit, e.g. "300 mm"')
+    if "," in stripped:
+        raise QuantityError(
+            "UNIT002",
+            f'"{text}" contains a comma (pint would read "1,5 m" as 15 m)',
+            "use a decimal point, and write vectors as a YAML list",
+        )
+    try:
+        q: Any = ureg.Quantity(stripped.replace("·", "*").replace("×", "*"))
+    except Exception:  # pint raises AssertionError, TokenError, ... on bad text
+        raise QuantityError(
+            "UNIT002", f'cannot read "{text}" as a quantity', 'write a number and a unit, e.g. "300 mm"'
+        ) from None
+    if not isinstance(q, pint.Quantity):
+        raise QuantityError("UNIT002", f'"{text}" is not a quantity', 'write a number and a unit, e.g. "300 mm"')
+    mag = q.magnitude
+    if isinstance(mag, complex) or not isinstance(mag, int | float) or not math.isfinite(float(mag)):
+        raise QuantityError("UNIT002", f'"{text}" is not a finite number', "write a finite value")
+    return q
+
+
+def to_si(value: object, kind_name: str) -> float:
+    """Convert one written value to the SI unit of ``kind_name``.
+
+    A bare number is refused (except exactly zero, which is zero in every unit), so a
+    value can never be silently read in the wrong unit.
+    """
+    kind = KINDS[kind_name]
+    if isinstance(value, bool) or value is None:
+        raise QuantityError(
+            "UNIT001",
+            f"expected {_a(kind.name)} with a unit, got {value!r}",
+            f'write it with a unit, e.g. "{kind.example}"',
+        )
+    if isinstance(value, int | float):
+        if value == 0:
+            return 0.0
+        raise QuantityError(
+            "UNIT001",
+            f"bare number {value!r} where {_a(kind.name)} is expected",
+            f'write the unit it was measured in, e.g. "{value} {kind.example.split(" ", 1)[1]}"',
+        )
+    if not isinstance(value, str):
+        raise QuantityError(
+            "UNIT001",
+            f"expected {_a(kind.name)} as text with a unit",
+            f'write e.g. "{kind.example}"',
+        )
+    q = parse(value)
+    if q.unitless:
+        if q.magnitude == 0:
+            return 0.0
+        raise QuantityError(
+            "UNIT001",
+            f'"{value}" has no unit where {_a(kind.name)} is expected',
+            f'write the unit it was measured in, e.g. "{q.magnitude} {kind.example.split(" ", 1)[1]}"',
+        )
+    wrong = QuantityError(
+        "UNIT003",
+        f'"{value}" is not {_a(kind.name)} ({q.units:~} has the wrong dimensions)',
+        f'write {_a(kind.name)}, e.g. "{kind.example}"',
+    )
+    if not q.check(kind.dimensionality):
+        raise wrong
+    if _radian_power(q) not in kind.radians:
+        if kind.radians == (1,):
+            raise QuantityError(
+                "UNIT003",
+                f'"{value}" names no angle unit, so it is not {_a(kind.name)}',
+                f'write an angle unit (rad, deg, rev), e.g. "{kind.example}"',
+            )
+        raise QuantityError(
+            "UNIT003",
+            f'"{value}" names an angle unit, so it is not {_a(kind.name)}',
+            f'write {_a(kind.name)}, e.g. "{kind.example}"',
+        )
+    if kind.name == "torque" and any(ureg.get_dimensionality(u) == _ENERGY for u in dict(q._units)):
+        raise QuantityError(
+            "UNIT003",
+            f'"{value}" is an energy, not a torque',
+            'write a torque as force times length, e.g. "40 N*m"',
+        )
+    target = kind.si_unit if kind.radians == (0,) else q.to_base_units().units
+    si = _convert(q, target)
+    return 0.0 if si == 0 else si  # -0.0 would print as "-0"
+
+
+def _convert(q: pint.Quantity[Any], target: Any) -> float:
+    """Multiply by the conversion factor in decimal, so that "175 mm" is 0.175 m and not
+    0.17500000000000002 (which would then be printed, diffed and compared as such)."""
+    factor = ureg.Quantity(1, q.units).to(target).magnitude
+    return float(Decimal(repr(float(q.magnitude))) * Decimal(repr(float(factor))))
+
+
+def describe_si(value: float, kind_name: str) -> str:
+    """How an SI value is shown in messages, e.g. ``25 m``."""
+    unit = {"angle": "rad", "angular_velocity": "rad/s"}.get(kind_name, KINDS[kind_name].si_unit)
+    return f"{value:.6g} {unit.replace('**', '^')}"
+
+
+@dataclass(frozen=True)
+class Range:
+    """Plausible SI magnitudes for one role of a quantity (inclusive)."""
+
+    kind: str
+    low: float  # smallest plausible |value| for a non-zero value (0 = no lower bound)
+    high: float  # largest plausible |value|
+
+
+# Defaults for robots from a hand-sized gripper to a forklift. A spec overrides any of
+# them under `plausibility:`. The gaps are wide on purpose: they exist to catch values
+# a thousand times off (millimetres typed as metres, grams as kilograms), not to judge design.
+DEFAULT_RANGES: dict[str, Range] = {
+    "offset": Range("length", 0.0, 10.0),
+    "size": Range("length", 0.0005, 10.0),
+    "angle": Range("angle", 0.0, 2 * math.pi),
+    "joint_travel": Range("length", 0.0, 20.0),
+    "joint_angle": Range("angle", 0.0, 4 * math.pi),
+    "mass": Range("mass", 0.0005, 5000.0),
+    "linear_velocity": Range("linear_velocity", 0.0, 10.0),
+    "angular_velocity": Range("angular_velocity", 0.0, 100.0),
+    "force": Range("force", 0.0, 1e5),
+    "torque": Range("torque", 0.0, 1e4),
+    "frequency": Range("frequency", 0.1, 10000.0),
+    "tolerance": Range("length", 1e-6, 0.5),
+    "density": Range("density", 5.0, 25000.0),
+}

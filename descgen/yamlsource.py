@@ -1,0 +1,204 @@
+"""Reading YAML safely while remembering where every key and value stood.
+
+PyYAML's composer gives nodes with marks; we build plain Python data from them and a
+table from each path (``("links", 3, "inertial", "mass")``) to its line and column, so
+that any later error can point at the YAML node that holds the bad value.
+
+Limits make hostile input fail fast instead of hanging: file size, alias expansion
+(a "billion laughs" document references one node exponentially often) and nesting depth.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from .findings import Finding, InputError, Where
+
+MAX_BYTES = 5 * 1024 * 1024  # a robot spec is kilobytes; 5 MB is already absurd
+MAX_NODES = 200_000  # after alias expansion
+MAX_DEPTH = 64
+
+Path_ = tuple[str | int, ...]
+
+
+@dataclass(frozen=True)
+class Document:
+    """Parsed YAML data plus the position of every node in it."""
+
+    file: str
+    data: Any
+    key_marks: dict[Path_, tuple[int, int]]
+    value_marks: dict[Path_, tuple[int, int]]
+    text: str
+
+    def where(self, path: Path_, key: bool = False) -> Where:
+        """The closest known position for ``path`` (walking up to its parents)."""
+        p = tuple(path)
+        while True:
+            table = self.key_marks if key else self.value_marks
+            if p in table:
+                line, col = table[p]
+                return Where(self.file, line, col)
+            if key and p in self.value_marks:
+                line, col = self.value_marks[p]
+                return Where(self.file, line, col)
+            if not p:
+                return Where(self.file, 1, 1)
+            p = p[:-1]
+            key = False
+
+
+def _fail(file: str, message: str, hint: str, line: int = 0, col: int = 0, code: str = "YAML001") -> InputError:
+    return InputError([Finding(code, "error", message, hint, "file", Where(file, line, col))])
+
+
+def read_text(path: Path, display: str) -> str:
+    """The text of a spec file, refusing what cannot be a spec."""
+    try:
+        size = path.stat().st_size
+    except FileNotFoundError:
+        raise _fail(display, "file not found", "check the path", code="YAML002") from None
+    except OSError as exc:
+        raise _fail(
+            display, f"cannot read the file: {exc.strerror}", "check the path and permissions", code="YAML002"
+        ) from None
+    if path.is_dir():
+        raise _fail(display, "is a directory, not a spec file", "name a .yaml file", code="YAML002")
+    if size > MAX_BYTES:
+        raise _fail(
+            display,
+            f"file is {size / 1e6:.1f} MB; a robot spec is at most {MAX_BYTES // (1024 * 1024)} MB",
+            "is this the right file?",
+            code="YAML003",
+        )
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise _fail(
+            display, f"cannot read the file: {exc.strerror}", "check the path and permissions", code="YAML002"
+        ) from None
+    if b"\0" in raw:
+        raise _fail(display, "binary file (contains NUL bytes), not YAML", "name a .yaml spec", code="YAML003")
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise _fail(display, f"not UTF-8 text (byte {exc.start})", "save the spec as UTF-8", code="YAML003") from None
+
+
+def load(path: Path, display: str | None = None) -> Document:
+    display = display or str(path)
+    text = read_text(path, display)
+    return loads(text, display)
+
+
+def loads(text: str, file: str = "<string>") -> Document:
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line, col = (mark.line + 1, mark.column + 1) if mark else (0, 0)
+        what = exc.problem or "malformed YAML"
+        raise _fail(file, f"malformed YAML: {what}", "fix the YAML syntax at this position", line, col) from None
+    except yaml.YAMLError as exc:
+        raise _fail(file, f"malformed YAML: {exc}", "fix the YAML syntax") from None
+    except RecursionError:
+        raise _fail(file, "YAML nested too deeply", f"a spec nests at most {MAX_DEPTH} levels") from None
+    if node is None:
+        raise _fail(
+            file, "the file is empty", "write a robot spec (see specs/warehouse_arm.yaml)", 1, 1, code="YAML004"
+        )
+    builder = _Builder(file)
+    data = builder.build(node, (), 0)
+    return Document(file, data, builder.key_marks, builder.value_marks, text)
+
+
+_constructor = yaml.SafeLoader("")
+
+
+class _Builder:
+    def __init__(self, file: str) -> None:
+        self.file = file
+        self.key_marks: dict[Path_, tuple[int, int]] = {}
+        self.value_marks: dict[Path_, tuple[int, int]] = {}
+        self.count = 0
+
+    def build(self, node: yaml.Node, path: Path_, depth: int) -> Any:
+        self.count += 1
+        if self.count > MAX_NODES:
+            raise _fail(
+                self.file,
+                f"more than {MAX_NODES} YAML nodes after expanding aliases",
+                "remove the alias expansion (a YAML 'billion laughs' document?)",
+                node.start_mark.line + 1,
+                node.start_mark.column + 1,
+                code="YAML003",
+            )
+        if depth > MAX_DEPTH:
+            raise _fail(
+                self.file,
+                "YAML nested too deeply",
+                f"a spec nests at most {MAX_DEPTH} levels",
+                node.start_mark.line + 1,
+                node.start_mark.column + 1,
+            )
+        self.value_marks.setdefault(path, (node.start_mark.line + 1, node.start_mark.column + 1))
+        if isinstance(node, yaml.MappingNode):
+            out: dict[Any, Any] = {}
+            for key_node, value_node in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge":
+                    raise _fail(
+                        self.file,
+                        "YAML merge keys (<<) are not supported",
+                        "write the keys out",
+                        key_node.start_mark.line + 1,
+                        key_node.start_mark.column + 1,
+                    )
+                if not isinstance(key_node, yaml.ScalarNode):
+                    raise _fail(
+                        self.file,
+                        "a mapping key must be a plain name",
+                        "use a plain name as key",
+                        key_node.start_mark.line + 1,
+                        key_node.start_mark.column + 1,
+                    )
+                key = _constructor.construct_object(key_node)
+                if not isinstance(key, str):
+                    key = str(key_node.value)
+                kpath = (*path, key)
+                mark = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+                if key in out:
+                    first = self.key_marks.get(kpath, (0, 0))
+                    raise _fail(
+                        self.file,
+                        f"duplicate key '{key}' (first at line {first[0]})",
+                        "remove one of them; YAML would silently keep the last",
+                        *mark,
+                        code="SPEC005",
+                    )
+                self.key_marks[kpath] = mark
+                out[key] = self.build(value_node, kpath, depth + 1)
+            return out
+        if isinstance(node, yaml.SequenceNode):
+            return [self.build(item, (*path, i), depth + 1) for i, item in enumerate(node.value)]
+        try:
+            return _constructor.construct_object(node)
+        except yaml.YAMLError as exc:
+            raise _fail(
+                self.file,
+                f"cannot read value: {exc}",
+                "quote the value",
+                node.start_mark.line + 1,
+                node.start_mark.column + 1,
+            ) from None
+        except ValueError as exc:  # e.g. an out-of-range timestamp
+            raise _fail(
+                self.file,
+                f"cannot read value: {exc}",
+                "quote the value",
+                node.start_mark.line + 1,
+                node.start_mark.column + 1,
+            ) from None
