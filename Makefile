@@ -18,6 +18,8 @@ $(VENV)/.installed: pyproject.toml
 
 demo: setup
 	$(BIN)/descgen validate $(SPEC)
+	$(BIN)/descgen generate $(SPEC)
+	$(BIN)/descgen check $(SPEC)
 
 lint: setup
 	$(BIN)/ruff check descgen tests benchmarks

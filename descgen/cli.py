@@ -10,9 +10,10 @@ import argparse
 import json
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
 from . import __version__, report
-from .findings import Finding, InputError
+from .findings import Finding, InputError, Where
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
 
@@ -30,7 +31,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
     all_findings: list[Finding] = []
     failed = False
-    for path in args.spec:
+    for path in expand_specs(args.spec):
         try:
             loaded = load_spec(path)
         except InputError as exc:
@@ -50,6 +51,89 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     elif failed:
         sys.stderr.write(report.text(f for f in all_findings if f.severity == "error"))
     return EXIT_INPUT if failed else EXIT_OK
+
+
+def expand_specs(paths: Sequence[str]) -> list[str]:
+    """Spec files, with a folder standing for the *.yaml files in it."""
+    out: list[str] = []
+    for p in paths:
+        path = Path(p)
+        if path.is_dir():
+            found = sorted(str(x) for x in (*path.glob("*.yaml"), *path.glob("*.yml")))
+            if not found:
+                raise InputError(
+                    [
+                        Finding(
+                            "YAML002",
+                            "error",
+                            f"{p} holds no .yaml spec",
+                            "name a spec file or a folder of specs",
+                            "file",
+                            Where(p),
+                        )
+                    ]
+                )
+            out += found
+        else:
+            out.append(p)
+    return out
+
+
+def _out_paths(args: argparse.Namespace) -> tuple[Path | None, Path | None]:
+    out = Path(args.out) if args.out else None
+    templates = Path(args.templates) if args.templates else None
+    if templates is not None and not templates.is_dir():
+        raise InputError(
+            [
+                Finding(
+                    "GEN010",
+                    "error",
+                    f"--templates {templates} is not a folder",
+                    "name a folder of template overrides",
+                    "option",
+                    Where(str(templates)),
+                )
+            ]
+        )
+    return out, templates
+
+
+def _cmd_generate(args: argparse.Namespace) -> int:
+    from .generate import generate
+
+    out, templates = _out_paths(args)
+    worst = EXIT_OK
+    for spec in expand_specs(args.spec):
+        outcome = generate(Path(spec), out, templates, force=args.force)
+        sys.stderr.write(report.text(outcome.findings))
+        if outcome.failed:
+            print(f"{spec}: nothing written: a check failed", file=sys.stderr)
+            worst = max(worst, EXIT_FAILED)
+            continue
+        print(
+            f"{spec}: wrote {len(outcome.written)} files, {len(outcome.unchanged)} unchanged"
+            + (f", removed {len(outcome.removed)}" if outcome.removed else "")
+        )
+        for rel in outcome.written:
+            print(f"  wrote {rel}")
+    return worst
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    from .generate import check
+
+    out, templates = _out_paths(args)
+    worst = EXIT_OK
+    for spec in expand_specs(args.spec):
+        outcome = check(Path(spec), out, templates)
+        if outcome.diff:
+            sys.stdout.write(outcome.diff)
+        sys.stderr.write(report.text(outcome.findings))
+        if outcome.failed:
+            worst = max(worst, EXIT_FAILED)
+        else:
+            print(f"{spec}: generated files are up to date and every check passed")
+    return worst
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -81,6 +165,19 @@ def parser() -> argparse.ArgumentParser:
     v.add_argument("spec", nargs="+")
     v.add_argument("--format", choices=("text", "json"), default="text")
     v.set_defaults(fn=_cmd_validate)
+
+    g = sub.add_parser("generate", help="write generated/<robot>_description/ if every check passes")
+    g.add_argument("spec", nargs="+")
+    g.add_argument("--out", help="output root (default: generated/ beside specs/)")
+    g.add_argument("--templates", help="folder of templates that override the defaults by file name")
+    g.add_argument("--force", action="store_true", help="overwrite files that were edited by hand")
+    g.set_defaults(fn=_cmd_generate)
+
+    c = sub.add_parser("check", help="regenerate in memory, compare with the files on disk, run the checks")
+    c.add_argument("spec", nargs="+")
+    c.add_argument("--out", help="output root (default: generated/ beside specs/)")
+    c.add_argument("--templates", help="folder of template overrides")
+    c.set_defaults(fn=_cmd_check)
 
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")
     s.set_defaults(fn=_cmd_schema)

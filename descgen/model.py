@@ -8,6 +8,7 @@ Each element keeps ``where`` (file, line) for messages.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -334,6 +335,14 @@ class Constant:
 
 
 @dataclass(frozen=True)
+class PackageInfo:
+    version: str = "0.1.0"
+    maintainer: str = "descgen user"
+    email: str = "maintainer@example.com"
+    license: str = "Apache-2.0"
+
+
+@dataclass(frozen=True)
 class Robot:
     name: str
     links: tuple[Link, ...] = ()
@@ -347,26 +356,58 @@ class Robot:
     # (subject, field path) -> constant name, e.g. ("joint:left_wheel_joint", "origin.xyz.1") -> "-half_track"
     refs: tuple[tuple[tuple[str, str], str], ...] = ()
     description: str | None = None
+    package: PackageInfo = PackageInfo()
     where: Where = NOWHERE
     source_file: str | None = None
     spec_hash: str | None = None
     extras: dict[str, object] = field(default_factory=dict, compare=False, hash=False)
 
-    # Lookups. Broken descriptions may repeat names; these return the first.
+    # Lookups. Broken descriptions may repeat names; these return the first. The indexes
+    # are built once per (immutable) robot, so rules stay linear on 1000-link chains.
+    @functools.cached_property
+    def _links_by_name(self) -> dict[str, Link]:
+        out: dict[str, Link] = {}
+        for lk in self.links:
+            out.setdefault(lk.name, lk)
+        return out
+
+    @functools.cached_property
+    def _joints_by_name(self) -> dict[str, Joint]:
+        out: dict[str, Joint] = {}
+        for j in self.joints:
+            out.setdefault(j.name, j)
+        return out
+
+    @functools.cached_property
+    def _parent_joint_of(self) -> dict[str, Joint]:
+        out: dict[str, Joint] = {}
+        for j in self.joints:
+            if j.child is not None:
+                out.setdefault(j.child, j)
+        return out
+
+    @functools.cached_property
+    def _children_of(self) -> dict[str, list[Joint]]:
+        out: dict[str, list[Joint]] = {}
+        for j in self.joints:
+            if j.parent is not None:
+                out.setdefault(j.parent, []).append(j)
+        return out
+
     def link(self, name: str) -> Link | None:
-        return next((lk for lk in self.links if lk.name == name), None)
+        return self._links_by_name.get(name)
 
     def joint(self, name: str) -> Joint | None:
-        return next((j for j in self.joints if j.name == name), None)
+        return self._joints_by_name.get(name)
 
     def child_joints(self, link: str) -> Iterator[Joint]:
-        return (j for j in self.joints if j.parent == link)
+        return iter(self._children_of.get(link, ()))
 
     def parent_joint(self, link: str) -> Joint | None:
-        return next((j for j in self.joints if j.child == link), None)
+        return self._parent_joint_of.get(link)
 
     def roots(self) -> list[str]:
-        children = {j.child for j in self.joints}
+        children = set(self._parent_joint_of)
         return list(dict.fromkeys(lk.name for lk in self.links if lk.name not in children))
 
     def root(self) -> str | None:

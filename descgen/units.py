@@ -16,6 +16,7 @@ pint pitfalls handled here (see STYLE.md):
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from decimal import Decimal
@@ -104,12 +105,29 @@ def parse(text: str) -> pint.Quantity[Any]:
     if not isinstance(q, pint.Quantity):
         raise QuantityError("UNIT002", f'"{text}" is not a quantity', 'write a number and a unit, e.g. "300 mm"')
     mag = q.magnitude
-    if isinstance(mag, complex) or not isinstance(mag, int | float) or not math.isfinite(float(mag)):
+    try:
+        finite = isinstance(mag, int | float) and not isinstance(mag, bool) and math.isfinite(float(mag))
+    except OverflowError:  # an integer too large for a float
+        finite = False
+    if not finite:
         raise QuantityError("UNIT002", f'"{text}" is not a finite number', "write a finite value")
     return q
 
 
 def to_si(value: object, kind_name: str) -> float:
+    """Convert one written value to the SI unit of ``kind_name`` (see :func:`_to_si`)."""
+    if isinstance(value, str | int | float) and not isinstance(value, bool):
+        return _to_si_cached(value, kind_name)
+    return _to_si(value, kind_name)
+
+
+@functools.lru_cache(maxsize=4096)
+def _to_si_cached(value: str | int | float, kind_name: str) -> float:
+    # pint parses slowly (~0.5 ms); specs repeat the same texts ("0", "100 mm") a lot
+    return _to_si(value, kind_name)
+
+
+def _to_si(value: object, kind_name: str) -> float:
     """Convert one written value to the SI unit of ``kind_name``.
 
     A bare number is refused (except exactly zero, which is zero in every unit), so a

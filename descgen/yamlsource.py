@@ -24,6 +24,9 @@ MAX_DEPTH = 64
 
 Path_ = tuple[str | int, ...]
 
+# libyaml's composer when PyYAML was built with it (marks are the same), else pure Python
+_LOADER: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
 
 @dataclass(frozen=True)
 class Document:
@@ -97,7 +100,7 @@ def load(path: Path, display: str | None = None) -> Document:
 
 def loads(text: str, file: str = "<string>") -> Document:
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = yaml.compose(text, Loader=_LOADER)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line, col = (mark.line + 1, mark.column + 1) if mark else (0, 0)
@@ -165,7 +168,7 @@ class _Builder:
                         key_node.start_mark.line + 1,
                         key_node.start_mark.column + 1,
                     )
-                key = _constructor.construct_object(key_node)
+                key = self.construct(key_node)
                 if not isinstance(key, str):
                     key = str(key_node.value)
                 kpath = (*path, key)
@@ -184,21 +187,18 @@ class _Builder:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [self.build(item, (*path, i), depth + 1) for i, item in enumerate(node.value)]
+        return self.construct(node)
+
+    def construct(self, node: yaml.Node) -> Any:
+        """A scalar's Python value; explicit tags that cannot be built are errors, not crashes."""
         try:
             return _constructor.construct_object(node)
-        except yaml.YAMLError as exc:
+        except (yaml.YAMLError, ValueError, TypeError, OverflowError, IndexError, KeyError, AttributeError) as exc:
+            what = getattr(exc, "problem", None) or str(exc) or type(exc).__name__
             raise _fail(
                 self.file,
-                f"cannot read value: {exc}",
-                "quote the value",
-                node.start_mark.line + 1,
-                node.start_mark.column + 1,
-            ) from None
-        except ValueError as exc:  # e.g. an out-of-range timestamp
-            raise _fail(
-                self.file,
-                f"cannot read value: {exc}",
-                "quote the value",
+                f"cannot read value {node.value!r}: {what}",
+                "quote the value or remove its !tag",
                 node.start_mark.line + 1,
                 node.start_mark.column + 1,
             ) from None

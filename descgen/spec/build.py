@@ -310,7 +310,7 @@ class Builder:
                         optical,
                         where=self.where(sp),
                         source="REP 103",
-                        description="optical frame: z forward, x right, y down (REP 103)",
+                        description="optical frame: z forward, x right, y down",
                     )
                 )
                 joints.append(
@@ -341,6 +341,9 @@ class Builder:
             description=spec.description,
             where=self.where(()),
             source_file=self.doc.file,
+            package=m.PackageInfo(
+                spec.package.version, spec.package.maintainer, spec.package.email, spec.package.license
+            ),
         )
         if spec.semantic is None:
             return robot

@@ -420,11 +420,23 @@ class RangeSpec(Base):
     max: Raw | None = None
 
 
+class PackageSpec(Base):
+    """The generated ament package's metadata (package.xml)."""
+
+    version: Annotated[str, StringConstraints(pattern=r"^\d+\.\d+\.\d+$")] = "0.1.0"
+    maintainer: Annotated[str, StringConstraints(min_length=1, max_length=200)] = "descgen user"
+    email: Annotated[str, StringConstraints(pattern=r"^[^@\s<>\"']+@[^@\s<>\"']+\.[^@\s<>\"']+$")] = (
+        "maintainer@example.com"
+    )
+    license: Annotated[str, StringConstraints(min_length=1, max_length=200)] = "Apache-2.0"
+
+
 class RobotSpec(Base):
     """One robot. See specs/warehouse_arm.yaml for a complete example."""
 
     name: Name
     description: Text | None = None
+    package: PackageSpec = PackageSpec()
     require_sources: bool = False
     plausibility: dict[str, RangeSpec] = {}
     materials: list[MaterialSpec] = []

@@ -178,3 +178,62 @@ def control_joint_listed_twice(robot: Robot) -> Iterator[Finding]:
                 subject=f"ros2_control:{cj.name}",
             )
         seen.add(cj.name)
+
+
+@rule("CTRL006", "diff-drive-geometry-disagrees", "error")
+def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Derives `wheel_separation` and `wheel_radius` from the wheel joints and wheel
+    geometry, and flags a diff_drive_controller whose values disagree (or whose wheels
+    cannot give them).
+    ## Why is this bad?
+    Odometry scales with both: a radius typed twice and changed once makes the robot
+    believe it drove further than it did, and the map smears.
+    """
+    from ...derive import diff_drive_geometry
+
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    for c in rc.controllers:
+        if not c.type.startswith("diff_drive_controller/"):
+            continue
+        geo = diff_drive_geometry(robot, c)
+        for problem in geo.problems:
+            yield at(
+                "CTRL006",
+                c,
+                f"controller '{c.name}': {problem}",
+                "fix the wheel joints or their collision geometry",
+                subject=f"controller:{c.name}",
+            )
+        for key, derived in (("wheel_separation", geo.wheel_separation), ("wheel_radius", geo.wheel_radius)):
+            given = c.param(key)
+            if given is None or derived is None:
+                continue
+            if not isinstance(given, int | float) or abs(float(given) - derived) > 1e-9 * max(1.0, abs(derived)):
+                yield at(
+                    "CTRL006",
+                    c,
+                    f"controller '{c.name}' {key} is {given} but the URDF gives {derived:.9g} m",
+                    f"remove {key} from the spec: descgen derives it from the URDF",
+                    subject=f"controller:{c.name}",
+                )
+
+
+@rule("CTRL007", "update-rate-not-whole", "error")
+def update_rate_not_whole(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Checks the controller_manager update rate is a whole number of Hz.
+    ## Why is this bad?
+    `update_rate` is an integer parameter; a fractional value fails to load.
+    """
+    rc = robot.ros2_control
+    if rc is not None and rc.update_rate is not None and not float(rc.update_rate).is_integer():
+        yield at(
+            "CTRL007",
+            rc,
+            f"update_rate {rc.update_rate:g} Hz is not a whole number",
+            "write e.g. 100 Hz",
+            subject="ros2_control",
+        )

@@ -14,9 +14,13 @@ from ..registry import at, rule
 def _moving_links(robot: Robot) -> set[str]:
     """Links that some non-fixed joint moves (that joint's child and everything below)."""
     moving: set[str] = set()
-    for lk in robot.links:
-        if any(j.type != "fixed" for j in robot.path_to_root(lk.name)):
-            moving.add(lk.name)
+    todo = [j.child for j in robot.joints if j.type != "fixed" and j.child]
+    while todo:
+        name = todo.pop()
+        if name in moving:
+            continue  # also ends cycles
+        moving.add(name)
+        todo += [j.child for j in robot.child_joints(name) if j.child]
     return moving
 
 

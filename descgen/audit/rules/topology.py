@@ -75,20 +75,18 @@ def kinematic_cycle(robot: Robot) -> Iterator[Finding]:
     for j in robot.joints:
         if j.child and j.parent and j.child not in parent_of:
             parent_of[j.child] = j
-    reported: set[str] = set()
+    done: set[str] = set()  # links known to end at a root (or already reported)
     for start in parent_of:
         seen: list[str] = []
+        on_path: set[str] = set()
         cur: str | None = start
-        while cur is not None and cur in parent_of and cur not in seen:
+        while cur is not None and cur in parent_of and cur not in done and cur not in on_path:
             seen.append(cur)
+            on_path.add(cur)
             cur = parent_of[cur].parent
-        if cur is not None and cur in seen:
+        if cur is not None and cur in on_path:
             loop = seen[seen.index(cur) :]
-            key = min(loop)
-            if key in reported:
-                continue
-            reported.add(key)
-            j = parent_of[key]
+            j = parent_of[min(loop)]
             names = " -> ".join(parent_of[x].name for x in loop)
             yield at(
                 "TOPO003",
@@ -96,6 +94,7 @@ def kinematic_cycle(robot: Robot) -> Iterator[Finding]:
                 f"joints form a cycle: {names}",
                 "break the loop: one of these joints has the wrong parent or child",
             )
+        done.update(seen)
 
 
 @rule("TOPO004", "dangling-joint", "error")

@@ -1,0 +1,106 @@
+"""Check: the written controllers YAML loads, and every joint and interface it names
+exists in the URDF's ros2_control block (read back from the rendered files)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from ..findings import Finding, Where
+from ..model import Controller, Robot
+from ..xmlcompare import parse
+
+_JOINT_LISTS = ("joints", "left_wheel_names", "right_wheel_names")
+
+
+def exported_interfaces(urdf_text: str) -> tuple[set[tuple[str, str]], set[tuple[str, str]], set[str]]:
+    """(command, state) interfaces per joint in the ``<ros2_control>`` blocks, and URDF joints."""
+    root = parse(urdf_text)
+    command: set[tuple[str, str]] = set()
+    state: set[tuple[str, str]] = set()
+    for block in root.iter("ros2_control"):
+        for j in block.iter("joint"):
+            command |= {(j.get("name", ""), c.get("name", "")) for c in j.iter("command_interface")}
+            state |= {(j.get("name", ""), c.get("name", "")) for c in j.iter("state_interface")}
+    urdf_joints = {j.get("name", "") for j in root if j.tag == "joint"}
+    return command, state, urdf_joints
+
+
+def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
+    from ..audit.rules.control import claims, state_reads
+
+    path = "config/ros2_controllers.yaml"
+    if path not in files:
+        return []
+    loc = Where(str(where / path))
+    out: list[Finding] = []
+    try:
+        doc: Any = yaml.safe_load(files[path])
+    except yaml.YAMLError as exc:
+        return [
+            Finding(
+                "GEN003", "error", f"controllers YAML does not load: {exc}", "check the template", "file:" + path, loc
+            )
+        ]
+    command, state, urdf_joints = exported_interfaces(files[f"urdf/{robot.name}.urdf"])
+    cm = (doc or {}).get("controller_manager", {}).get("ros__parameters", {})
+    if not isinstance(cm.get("update_rate"), int):
+        out.append(
+            Finding(
+                "GEN003",
+                "error",
+                "controller_manager update_rate is not an integer",
+                "write the rate as a whole number of Hz",
+                "file:" + path,
+                loc,
+            )
+        )
+    for name, entry in cm.items():
+        if not isinstance(entry, dict) or "type" not in entry:
+            continue
+        params = (doc.get(name) or {}).get("ros__parameters", {})
+        c = Controller(name, str(entry["type"]), tuple((k, _tuple(v)) for k, v in params.items()))
+        for key in _JOINT_LISTS:
+            for joint in params.get(key, []) or []:
+                if joint not in urdf_joints:
+                    out.append(
+                        Finding(
+                            "GEN003",
+                            "error",
+                            f"controller '{name}' {key} names '{joint}', not a URDF joint",
+                            "fix the joint name in the spec",
+                            f"controller:{name}",
+                            loc,
+                        )
+                    )
+        for joint, iface in claims(c):
+            if joint in urdf_joints and (joint, iface) not in command:
+                out.append(
+                    Finding(
+                        "GEN003",
+                        "error",
+                        f"controller '{name}' claims '{joint}/{iface}', not exported",
+                        "add the command interface in ros2_control",
+                        f"controller:{name}",
+                        loc,
+                    )
+                )
+        for joint, iface in state_reads(c):
+            if joint in urdf_joints and (joint, iface) not in state:
+                out.append(
+                    Finding(
+                        "GEN003",
+                        "error",
+                        f"controller '{name}' reads '{joint}/{iface}', not exported",
+                        "add the state interface in ros2_control",
+                        f"controller:{name}",
+                        loc,
+                    )
+                )
+    return out
+
+
+def _tuple(v: object) -> object:
+    return tuple(v) if isinstance(v, list) else v

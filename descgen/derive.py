@@ -1,0 +1,142 @@
+"""Values the outputs need that are derived from the model, never typed twice.
+
+Templates only format; everything computed for an output is computed here and tested here.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .model import Controller, Cylinder, Interface, Joint, Robot, Sphere
+from .transforms import Mat, pose_matrix
+
+
+def fixed_transform(robot: Robot, frame: str, base: str) -> Mat | None:
+    """Pose of ``frame`` in ``base`` with every joint at zero; None if ``base`` is not above it."""
+    t = np.eye(4)
+    for j in reversed(robot.path_to_root(frame)):
+        t = pose_matrix(j.origin.xyz, j.origin.rpy) @ t
+        if j.parent == base:
+            return t
+    return t if frame == base else None
+
+
+def _wheel_names(c: Controller, key: str) -> list[str]:
+    v = c.param(key)
+    return [str(x) for x in v] if isinstance(v, list | tuple) else []
+
+
+@dataclass(frozen=True)
+class DiffDriveGeometry:
+    wheel_separation: float | None
+    wheel_radius: float | None
+    problems: tuple[str, ...] = ()
+
+
+def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
+    """``wheel_separation``: distance between the left and right wheel joint origins, along
+    the wheel axis; ``wheel_radius``: the radius of the wheel link's collision cylinder
+    (or sphere). With several wheels per side, the first of each side is used and the
+    others must agree."""
+    problems: list[str] = []
+    left, right = _wheel_names(c, "left_wheel_names"), _wheel_names(c, "right_wheel_names")
+    if not left or not right:
+        return DiffDriveGeometry(None, None, ("left_wheel_names and right_wheel_names are required",))
+    joints = [robot.joint(n) for n in (left[0], right[0])]
+    lj, rj = joints
+    if lj is None or rj is None:
+        missing = [n for n, j in zip((left[0], right[0]), joints, strict=True) if j is None]
+        return DiffDriveGeometry(None, None, (f"wheel joint '{missing[0]}' does not exist",))
+    separation = None
+    base = lj.parent
+    if lj.parent != rj.parent or base is None:
+        problems.append(f"wheels '{lj.name}' and '{rj.name}' hang from different links")
+    elif lj.axis is None:
+        problems.append(f"wheel joint '{lj.name}' has no axis")
+    else:
+        tl = pose_matrix(lj.origin.xyz, lj.origin.rpy)
+        tr = pose_matrix(rj.origin.xyz, rj.origin.rpy)
+        axis = tl[:3, :3] @ np.asarray(lj.axis, dtype=float)
+        n = float(np.linalg.norm(axis))
+        if n > 0:
+            separation = abs(float(np.dot(tl[:3, 3] - tr[:3, 3], axis / n)))
+    radii = [wheel_radius(robot, j) for j in (lj, rj)]
+    radius = radii[0]
+    if radius is None:
+        problems.append(f"wheel link '{lj.child}' has no collision cylinder or sphere to take the radius from")
+    elif radii[1] is not None and not math.isclose(radii[0] or 0, radii[1], rel_tol=1e-9):
+        problems.append(f"left and right wheel radii differ ({radii[0]:.6g} m, {radii[1]:.6g} m)")
+    return DiffDriveGeometry(separation, radius, tuple(problems))
+
+
+def wheel_radius(robot: Robot, j: Joint) -> float | None:
+    link = robot.link(j.child) if j.child else None
+    if link is None:
+        return None
+    shapes = [c.geometry for c in link.collisions] + [v.geometry for v in link.visuals]
+    for g in shapes:
+        if isinstance(g, Cylinder | Sphere):
+            return g.radius
+    return None
+
+
+def command_limits(j: Joint | None, interface: str) -> tuple[float | None, float | None]:
+    """``min``/``max`` of a command interface, from the joint's URDF limits."""
+    if j is None or j.limit is None:
+        return None, None
+    lm = j.limit
+    if interface == "position" and j.type in ("revolute", "prismatic"):
+        return lm.lower, lm.upper
+    if interface == "velocity" and lm.velocity is not None:
+        return -abs(lm.velocity), abs(lm.velocity)
+    if interface == "effort" and lm.effort is not None:
+        return -abs(lm.effort), abs(lm.effort)
+    return None, None
+
+
+def initial_position(j: Joint | None, given: float | None) -> float:
+    """The given initial position, else 0 when inside the limits, else the middle of the
+    range (what joint_state_publisher does)."""
+    if given is not None:
+        return given
+    if j is not None and j.outside_limits(0.0) and j.limit and j.limit.lower is not None and j.limit.upper is not None:
+        return (j.limit.lower + j.limit.upper) / 2
+    return 0.0
+
+
+def interfaces_with_limits(robot: Robot) -> list[tuple[str, list[Interface], list[Interface]]]:
+    """Per ros2_control joint: command interfaces with min/max from the joint limits, and
+    state interfaces with their initial values."""
+    rc = robot.ros2_control
+    out: list[tuple[str, list[Interface], list[Interface]]] = []
+    if rc is None:
+        return out
+    for cj in rc.joints:
+        j = robot.joint(cj.name)
+        commands = [Interface(i.name, *command_limits(j, i.name)) for i in cj.command]
+        states = []
+        for i in cj.state:
+            if i.name == "position":
+                states.append(Interface(i.name, initial_value=initial_position(j, i.initial_value)))
+            else:
+                states.append(Interface(i.name, initial_value=0.0))
+        out.append((cj.name, commands, states))
+    return out
+
+
+def adjacent_pairs(robot: Robot) -> list[tuple[str, str]]:
+    """Links that touch through a joint: each link with collision geometry paired with its
+    nearest ancestor that has collision geometry (MoveIt's "Adjacent")."""
+    with_geometry = {lk.name for lk in robot.links if lk.collisions}
+    pairs: list[tuple[str, str]] = []
+    for lk in robot.links:
+        if lk.name not in with_geometry:
+            continue
+        for j in reversed(robot.path_to_root(lk.name)):
+            if j.parent in with_geometry:
+                pairs.append((j.parent, lk.name))
+                break
+    return pairs

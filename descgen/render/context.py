@@ -1,0 +1,137 @@
+"""The template context: the model plus everything derived for the outputs."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import yaml
+
+from .. import derive
+from ..model import DisabledPair, Robot
+from .formatting import num, vec, xacro_text
+from .views import Values, items
+
+
+def package_name(robot: Robot) -> str:
+    return f"{robot.name}_description"
+
+
+# exec_depends of what the launch files start and what controller_manager loads
+_BASE_DEPENDS = ["joint_state_publisher_gui", "launch", "launch_ros", "robot_state_publisher", "rviz2", "xacro"]
+_CONTROL_DEPENDS = ["controller_manager", "ros2_control"]
+
+
+def _controller_package(type_: str) -> str:
+    return type_.split("/")[0]
+
+
+def _plain(value: object) -> object:
+    """Model parameter values (tuples of pairs for mappings) as plain YAML data."""
+    if isinstance(value, tuple) and value and all(isinstance(v, tuple) and len(v) == 2 for v in value):
+        return {str(k): _plain(v) for k, v in value}
+    if isinstance(value, tuple | list):
+        return [_plain(v) for v in value]
+    if isinstance(value, float):
+        return 0.0 if value == 0 else value
+    return value
+
+
+class _Dumper(yaml.SafeDumper):
+    """Block style, spec order, and lists of scalars on one line (as ROS configs are written)."""
+
+
+def _represent_list(dumper: yaml.SafeDumper, data: list[Any]) -> yaml.Node:
+    flow = all(not isinstance(v, dict | list) for v in data)
+    return dumper.represent_sequence("tag:yaml.org,2002:seq", data, flow_style=flow)
+
+
+_Dumper.add_representer(list, _represent_list)
+
+
+def controllers_doc(robot: Robot) -> dict[str, Any]:
+    rc = robot.ros2_control
+    if rc is None:
+        return {}
+    cm: dict[str, Any] = {"update_rate": round(rc.update_rate or 100)}
+    doc: dict[str, Any] = {"controller_manager": {"ros__parameters": cm}}
+    for c in rc.controllers:
+        cm[c.name] = {"type": c.type}
+    for c in rc.controllers:
+        params = {str(k): _plain(v) for k, v in c.params}
+        if c.type.startswith("diff_drive_controller/"):
+            geo = derive.diff_drive_geometry(robot, c)
+            if geo.wheel_separation is not None:
+                params["wheel_separation"] = geo.wheel_separation
+            if geo.wheel_radius is not None:
+                params["wheel_radius"] = geo.wheel_radius
+        if params:
+            doc[c.name] = {"ros__parameters": params}
+    return doc
+
+
+def controllers_yaml(robot: Robot) -> str:
+    text = yaml.dump(controllers_doc(robot), Dumper=_Dumper, sort_keys=False, default_flow_style=False, width=100)
+    return text.rstrip("\n")
+
+
+def build(robot: Robot, xacro: bool) -> dict[str, Any]:
+    """Context for one template family: ``xacro`` chooses property references and
+    xacro-escaped free text over plain numbers and text."""
+    values = Values(xacro=xacro)
+    element_items, macros = items(robot, values)
+    text = xacro_text if xacro else str
+    materials = [
+        {
+            "name": text(m.name),
+            "rgba": vec(m.rgba) if m.rgba else None,
+            "texture": text(m.texture) if m.texture else None,
+        }
+        for m in robot.materials
+    ]
+    rc = robot.ros2_control
+    controllers = rc.controllers if rc else ()
+    depends = list(_BASE_DEPENDS)
+    if rc is not None:
+        depends += _CONTROL_DEPENDS + sorted({_controller_package(c.type) for c in controllers})
+        if rc.plugin.startswith("mock_components/"):
+            depends.append("hardware_interface")
+    sem = robot.semantic
+    disabled: list[DisabledPair] = []
+    if sem is not None:
+        explicit = {frozenset((d.link1, d.link2)) for d in sem.disabled_collisions}
+        disabled = [
+            DisabledPair(a, b, "Adjacent") for a, b in derive.adjacent_pairs(robot) if frozenset((a, b)) not in explicit
+        ]
+        disabled += list(sem.disabled_collisions)
+    root = robot.root() or (robot.links[0].name if robot.links else "base_link")
+    extent = max((abs(c) for j in robot.joints for c in j.origin.xyz), default=1.0)
+    install_dirs = ["config", "launch", "rviz", "urdf"] + (["srdf"] if sem is not None else [])
+    return {
+        "robot": robot,
+        "description": text(robot.description) if robot.description else None,
+        "items": element_items,
+        "macros": macros,
+        "props": values.props,
+        "materials": materials,
+        "ros2_control": rc,
+        "hw_params": [(k, text(v)) for k, v in rc.params] if rc else [],
+        "control_joints": derive.interfaces_with_limits(robot),
+        "controllers": controllers,
+        "plugin": rc.plugin if rc else "",
+        "controllers_yaml": controllers_yaml(robot),
+        "semantic": sem,
+        "disabled": disabled,
+        "fixed_frame": root,
+        "view_distance": num(max(2.0, 4 * extent)),
+        "view_focal_z": num(0.5),
+        "package": {
+            "name": package_name(robot),
+            "version": robot.package.version,
+            "description": robot.description or f"Robot description of {robot.name}",
+            "maintainer": robot.package.maintainer,
+            "email": robot.package.email,
+            "license": robot.package.license,
+            "exec_depends": sorted(set(depends)),
+            "install_dirs": sorted(install_dirs),
+        },
+    }

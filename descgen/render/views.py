@@ -1,0 +1,274 @@
+"""Model elements as ready-to-print attribute text, for the URDF and the Xacro.
+
+One layout (templates/_elements.xml.j2) prints both files. What differs is how a value
+is written: the URDF prints numbers; the Xacro prints ``${property}`` references to the
+measured constants it declares once at the top, each with its source, and a repeated
+part becomes one macro whose instances differ only by names and origin.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from ..model import Box, Collision, Cylinder, Geometry, Inertial, Joint, Link, Mesh, Pose, Robot, Sphere, Visual
+from .formatting import num, vec, xacro_text
+
+
+@dataclass(frozen=True)
+class Prop:
+    name: str
+    value: str
+    source: str | None
+
+
+@dataclass(frozen=True)
+class ShapeView:
+    name: str | None
+    xyz: str
+    rpy: str
+    kind: str  # box | cylinder | sphere | mesh
+    attrs: tuple[tuple[str, str], ...]
+    material: str | None = None
+
+
+@dataclass(frozen=True)
+class InertialView:
+    xyz: str
+    rpy: str
+    mass: str
+    tensor: tuple[tuple[str, str], ...]
+
+
+@dataclass(frozen=True)
+class LinkView:
+    name: str
+    comment: str | None
+    visuals: tuple[ShapeView, ...]
+    collisions: tuple[ShapeView, ...]
+    inertial: InertialView | None
+
+
+@dataclass(frozen=True)
+class JointView:
+    name: str
+    type: str
+    parent: str
+    child: str
+    xyz: str
+    rpy: str
+    comment: str | None
+    axis: str | None = None
+    limit: tuple[tuple[str, str], ...] = ()
+    dynamics: tuple[tuple[str, str], ...] = ()
+    mimic: tuple[tuple[str, str], ...] = ()
+    safety: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass(frozen=True)
+class Item:
+    """One entry of the element list: a link with its parent joint, or a part instance."""
+
+    link: LinkView
+    joint: JointView | None
+    call: tuple[tuple[str, str], ...] = ()  # xacro macro call attributes, for part instances
+    part: str | None = None
+
+
+@dataclass(frozen=True)
+class PartMacro:
+    name: str
+    params: str
+    link: LinkView
+    joint: JointView
+    comment: str | None
+
+
+@dataclass
+class Values:
+    """Writes values either as numbers (URDF) or as property references (Xacro)."""
+
+    xacro: bool
+    props: list[Prop] = field(default_factory=list)
+    _index: dict[str, Prop] = field(default_factory=dict)
+
+    def __call__(self, name: str, value: str, source: str | None) -> str:
+        if not self.xacro:
+            return value
+        existing = self._index.get(name)
+        if existing is None:
+            prop = Prop(name, value, self.text(source))
+            self._index[name] = prop
+            self.props.append(prop)
+        elif existing.value != value:
+            raise ValueError(f"property {name} defined twice with different values")
+        return "${" + name + "}"
+
+    def text(self, s: str | None) -> str | None:
+        """Free text from the spec, in an attribute xacro evaluates."""
+        if s is None:
+            return None
+        return xacro_text(s) if self.xacro else s
+
+
+_ZERO = "0 0 0"
+
+
+def _geometry(g: Geometry | None, key: str, v: Values, source: str | None) -> tuple[str, tuple[tuple[str, str], ...]]:
+    if isinstance(g, Box):
+        return "box", (("size", v(f"{key}_size", vec(g.size), source)),)
+    if isinstance(g, Cylinder):
+        return "cylinder", (
+            ("radius", v(f"{key}_radius", num(g.radius), source)),
+            ("length", v(f"{key}_length", num(g.length), source)),
+        )
+    if isinstance(g, Sphere):
+        return "sphere", (("radius", v(f"{key}_radius", num(g.radius), source)),)
+    if isinstance(g, Mesh):
+        attrs = [("filename", v.text(g.filename) or "")]
+        if g.scale != (1.0, 1.0, 1.0):
+            attrs.append(("scale", vec(g.scale)))
+        return "mesh", tuple(attrs)
+    return "box", (("size", "0 0 0"),)
+
+
+def _shape_keys(prefix: str, link: Link) -> tuple[list[str], list[str]]:
+    """Property name stems for each visual and collision; a collision with the same
+    geometry as a visual shares its properties."""
+    vis = [prefix if i == 0 else f"{prefix}_visual{i}" for i in range(len(link.visuals))]
+    col = []
+    for i, c in enumerate(link.collisions):
+        same = next((vis[k] for k, vv in enumerate(link.visuals) if vv.geometry == c.geometry), None)
+        col.append(same or (f"{prefix}_collision" if i == 0 else f"{prefix}_collision{i}"))
+    return vis, col
+
+
+def _shape(s: Visual | Collision, key: str, v: Values, source: str | None) -> ShapeView:
+    kind, attrs = _geometry(s.geometry, key, v, source)
+    material = v.text(s.material) if isinstance(s, Visual) else None
+    return ShapeView(v.text(s.name), vec(s.origin.xyz), vec(s.origin.rpy), kind, attrs, material)
+
+
+def _inertial(i: Inertial, key: str, v: Values, source: str | None) -> InertialView:
+    tensor: tuple[tuple[str, str], ...] = ()
+    if i.inertia is not None:
+        t = i.inertia
+        # derived (computed from mass and geometry) or typed: printed, not a property
+        tensor = tuple((k, num(getattr(t, k))) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+    mass = v(f"{key}_mass", num(i.mass or 0.0), source)
+    return InertialView(vec(i.origin.xyz), vec(i.origin.rpy), mass, tensor)
+
+
+def link_view(link: Link, v: Values, name: str | None = None, key: str | None = None) -> LinkView:
+    stem = key or link.name
+    vis_keys, col_keys = _shape_keys(stem, link)
+    src = link.source
+    return LinkView(
+        name or link.name,
+        v.text(_comment(link.description, link.source)),
+        tuple(_shape(s, k, v, src) for s, k in zip(link.visuals, vis_keys, strict=True)),
+        tuple(_shape(s, k, v, src) for s, k in zip(link.collisions, col_keys, strict=True)),
+        _inertial(link.inertial, stem, v, src) if link.inertial else None,
+    )
+
+
+def joint_view(
+    j: Joint,
+    v: Values,
+    name: str | None = None,
+    child: str | None = None,
+    origin: tuple[str, str] | None = None,
+    key: str | None = None,
+) -> JointView:
+    stem = key or j.name
+    src = j.source
+    if origin is None:
+        xyz = v(f"{stem}_xyz", vec(j.origin.xyz), src) if j.origin.xyz != (0.0, 0.0, 0.0) else _ZERO
+        rpy = v(f"{stem}_rpy", vec(j.origin.rpy), src) if j.origin.rpy != (0.0, 0.0, 0.0) else _ZERO
+    else:
+        xyz, rpy = origin
+    limit: list[tuple[str, str]] = []
+    if j.limit is not None and j.type != "fixed":
+        lm = j.limit
+        for attr in ("lower", "upper", "effort", "velocity"):
+            value = getattr(lm, attr)
+            if value is not None and not (attr in ("lower", "upper") and j.type == "continuous" and value == 0):
+                limit.append((attr, v(f"{stem}_{attr}", num(value), src)))
+    dynamics: tuple[tuple[str, str], ...] = ()
+    if j.dynamics is not None:
+        dynamics = (("damping", num(j.dynamics.damping)), ("friction", num(j.dynamics.friction)))
+    mimic: tuple[tuple[str, str], ...] = ()
+    if j.mimic is not None:
+        mimic = (("joint", j.mimic.joint), ("multiplier", num(j.mimic.multiplier)), ("offset", num(j.mimic.offset)))
+    safety: tuple[tuple[str, str], ...] = ()
+    if j.safety is not None:
+        s = j.safety
+        safety = (
+            ("soft_lower_limit", num(s.soft_lower_limit)),
+            ("soft_upper_limit", num(s.soft_upper_limit)),
+            ("k_position", num(s.k_position)),
+            ("k_velocity", num(s.k_velocity)),
+        )
+    axis = vec(j.axis) if j.axis is not None and j.type not in ("fixed", "floating") else None
+    comment = v.text(_comment(j.description, j.source))
+    return JointView(
+        name or j.name,
+        j.type,
+        j.parent or "",
+        child or j.child or "",
+        xyz,
+        rpy,
+        comment,
+        axis,
+        tuple(limit),
+        dynamics,
+        mimic,
+        safety,
+    )
+
+
+def _comment(description: str | None, source: str | None) -> str | None:
+    if description and source:
+        return f"{description} ({source})"
+    return description or source
+
+
+def items(robot: Robot, v: Values) -> tuple[list[Item], list[PartMacro]]:
+    """Every link with its parent joint, in spec order; a part's instances become macro
+    calls (Xacro) or are written out (URDF)."""
+    out: list[Item] = []
+    macros: dict[str, PartMacro] = {}
+    written_joints: set[str] = set()
+    for link in robot.links:
+        j = robot.parent_joint(link.name)
+        if link.part is not None and j is not None and j.part == link.part:
+            if v.xacro and link.part not in macros:
+                macros[link.part] = PartMacro(
+                    link.part,
+                    "link joint xyz rpy",
+                    link_view(link, v, name="${link}", key=link.part),
+                    joint_view(j, v, name="${joint}", child="${link}", origin=("${xyz}", "${rpy}"), key=link.part),
+                    v.text(link.description),
+                )
+            xyz = v(f"{j.name}_xyz", vec(j.origin.xyz), j.source)
+            rpy = v(f"{j.name}_rpy", vec(j.origin.rpy), j.source) if j.origin.rpy != (0.0, 0.0, 0.0) else _ZERO
+            call = (("link", link.name), ("joint", j.name), ("xyz", xyz), ("rpy", rpy))
+            out.append(
+                Item(
+                    link_view(link, v, key=link.part),
+                    joint_view(j, v, key=link.part, origin=(xyz, rpy)),
+                    call,
+                    link.part,
+                )
+            )
+            written_joints.add(j.name)
+            continue
+        jv = joint_view(j, v) if j is not None else None
+        if j is not None:
+            written_joints.add(j.name)
+        out.append(Item(link_view(link, v), jv))
+    return out, list(macros.values())
+
+
+ViewFn = Callable[[Robot, Values], tuple[list[Item], list[PartMacro]]]
+__all__ = ["Item", "PartMacro", "Pose", "Prop", "Values", "items"]

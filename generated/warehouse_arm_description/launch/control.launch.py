@@ -1,0 +1,56 @@
+# generated from specs/warehouse_arm.yaml by descgen — do not edit
+# descgen spec-sha256=0c7b9f63f37b6c967cc30c45d944c766d2746c769df117e42675b825f43eb34a content-sha256=3fadbfc4dcf30c366bb302a292800788c3a62a32b6a4f92f021d2496309d4c98
+"""Run warehouse_arm on ros2_control (mock_components/GenericSystem): robot_state_publisher,
+ros2_control_node and the controller spawners."""
+
+from launch import LaunchDescription
+from launch.substitutions import Command, FindExecutable, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    share = FindPackageShare("warehouse_arm_description")
+    xacro_file = PathJoinSubstitution([share, "urdf", "warehouse_arm.urdf.xacro"])
+    robot_description = ParameterValue(
+        Command([FindExecutable(name="xacro"), " ", xacro_file]), value_type=str
+    )
+    controllers = PathJoinSubstitution([share, "config", "ros2_controllers.yaml"])
+    # Jazzy: controller_manager reads the URDF from the robot_description topic that
+    # robot_state_publisher publishes.
+    nodes = [
+        Node(
+            package="robot_state_publisher",
+            executable="robot_state_publisher",
+            parameters=[{"robot_description": robot_description}],
+        ),
+        Node(
+            package="controller_manager",
+            executable="ros2_control_node",
+            parameters=[controllers],
+            output="both",
+        ),
+    ]
+    nodes.append(
+        Node(
+            package="controller_manager",
+            executable="spawner",
+            arguments=["joint_state_broadcaster", "--controller-manager", "/controller_manager"],
+        )
+    )
+    nodes.append(
+        Node(
+            package="controller_manager",
+            executable="spawner",
+            arguments=["diff_drive_controller", "--controller-manager", "/controller_manager"],
+        )
+    )
+    nodes.append(
+        Node(
+            package="controller_manager",
+            executable="spawner",
+            arguments=["arm_controller", "--controller-manager", "/controller_manager"],
+        )
+    )
+    return LaunchDescription(nodes)

@@ -1,0 +1,29 @@
+# generated from specs/warehouse_arm.yaml by descgen — do not edit
+# descgen spec-sha256=0c7b9f63f37b6c967cc30c45d944c766d2746c769df117e42675b825f43eb34a content-sha256=99187bf15dd537e26bead8a077acc6fc87f1c93cc5e05ea46b0f02ecf3c7ca4b
+"""Show warehouse_arm in RViz: robot_state_publisher, joint_state_publisher_gui, rviz2."""
+
+from launch import LaunchDescription
+from launch.substitutions import Command, FindExecutable, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    share = FindPackageShare("warehouse_arm_description")
+    xacro_file = PathJoinSubstitution([share, "urdf", "warehouse_arm.urdf.xacro"])
+    robot_description = ParameterValue(
+        Command([FindExecutable(name="xacro"), " ", xacro_file]), value_type=str
+    )
+    rviz_config = PathJoinSubstitution([share, "rviz", "warehouse_arm.rviz"])
+    return LaunchDescription(
+        [
+            Node(
+                package="robot_state_publisher",
+                executable="robot_state_publisher",
+                parameters=[{"robot_description": robot_description}],
+            ),
+            Node(package="joint_state_publisher_gui", executable="joint_state_publisher_gui"),
+            Node(package="rviz2", executable="rviz2", arguments=["-d", rviz_config]),
+        ]
+    )
