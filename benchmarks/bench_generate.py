@@ -15,9 +15,9 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from synthetic import chain_spec  # noqa: E402
+from synthetic import chain_spec
 
-from descgen.generate import generate  # noqa: E402
+from descgen.generate import generate
 
 ROOT = Path(__file__).resolve().parents[1]
 REPEAT = 5
@@ -52,8 +52,10 @@ def bench(label: str, spec_text: str, name: str) -> None:
             subprocess.run([xacro_bin, str(xacro_file)], check=True, capture_output=True)
 
         t_xacro = median_seconds(run_xacro)
-        print(f"{label:<28} descgen generate {t_gen * 1000:8.1f} ms   xacro CLI {t_xacro * 1000:8.1f} ms   "
-              f"ratio {t_gen / t_xacro:5.2f}x")
+        print(
+            f"{label:<28} descgen generate {t_gen * 1000:8.1f} ms   xacro CLI {t_xacro * 1000:8.1f} ms   "
+            f"ratio {t_gen / t_xacro:5.2f}x"
+        )
 
 
 def main() -> None:

@@ -136,6 +136,46 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return worst
 
 
+def _cmd_poses(args: argparse.Namespace) -> int:
+    from .poses import evaluate, findings
+    from .spec import load_spec
+
+    loaded = load_spec(args.spec)
+    rows = evaluate(loaded.robot)
+    found = findings(loaded.robot, rows)
+    if args.format == "json":
+        doc = [
+            {
+                "pose": r.pose.name,
+                "frame": r.measurement.frame,
+                "relative_to": r.relative_to,
+                "measured_m": list(r.measurement.xyz),
+                "model_m": None if r.model is None else list(r.model),
+                "error_m": None if r.error is None else list(r.error),
+                "worst_axis_error_m": None if r.error is None else r.worst,
+                "tolerance_m": r.measurement.tolerance,
+                "ok": r.ok,
+                "source": r.measurement.source,
+            }
+            for r in rows
+        ]
+        sys.stdout.write(report.as_json(found, poses=doc))
+    else:
+        print(f"{'pose':<16} {'frame':<22} {'measured (mm)':<24} {'model (mm)':<24} {'worst':>7} {'tol':>5}  verdict")
+        for r in rows:
+
+            def mm(v: object) -> str:
+                return "n/a" if v is None else ", ".join(f"{c * 1000:.1f}" for c in v)  # type: ignore[attr-defined]
+
+            worst = "n/a" if r.error is None else f"{r.worst * 1000:.2f}"
+            print(
+                f"{r.pose.name:<16} {r.measurement.frame:<22} {mm(r.measurement.xyz):<24} {mm(r.model):<24} "
+                f"{worst:>7} {r.measurement.tolerance * 1000:>5g}  {'pass' if r.ok else 'FAIL'}"
+            )
+        sys.stderr.write(report.text(found))
+    return exit_code(found)
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -178,6 +218,11 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--out", help="output root (default: generated/ beside specs/)")
     c.add_argument("--templates", help="folder of template overrides")
     c.set_defaults(fn=_cmd_check)
+
+    k = sub.add_parser("poses", help="measured known poses against forward kinematics")
+    k.add_argument("spec")
+    k.add_argument("--format", choices=("text", "json"), default="text")
+    k.set_defaults(fn=_cmd_poses)
 
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")
     s.set_defaults(fn=_cmd_schema)

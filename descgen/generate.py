@@ -83,7 +83,7 @@ def _hand_edited(package_dir: Path, files: dict[str, str]) -> list[str]:
 
 # What generate owns; other commands may add their own evidence to the package.
 _OWN_DIRS = {"urdf", "srdf", "config", "launch", "rviz", "package.xml", "CMakeLists.txt"}
-_OWN_FILES: set[str] = set()
+_OWN_FILES: set[str] = {"evidence/known_poses.md"}
 
 
 def _ours(package_dir: Path) -> list[str]:

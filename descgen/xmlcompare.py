@@ -64,3 +64,9 @@ def parse(text: str | bytes) -> etree._Element:
     parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=True, huge_tree=False)
     data = text.encode("utf-8") if isinstance(text, str) else text
     return etree.fromstring(data, parser)
+
+
+def line_of(e: etree._Element) -> int:
+    """The source line of an element (0 when unknown)."""
+    v = e.sourceline
+    return v if isinstance(v, int) else 0

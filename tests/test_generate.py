@@ -33,13 +33,17 @@ def project(tmp: Path, text: str = EXAMPLE_TEXT) -> Path:
 
 
 def snapshot(folder: Path) -> dict[str, str]:
-    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
+    return {
+        p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
 
 
 def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd,
-                          timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd, timeout=300
+    )
 
 
 @pytest.fixture
@@ -59,9 +63,17 @@ def test_package_layout(generated: tuple[Path, Path]) -> None:
     _, pkg = generated
     files = set(snapshot(pkg))
     assert files == {
-        "package.xml", "CMakeLists.txt", "urdf/warehouse_arm.urdf.xacro", "urdf/warehouse_arm.urdf",
-        "urdf/warehouse_arm.ros2_control.xacro", "srdf/warehouse_arm.srdf", "config/ros2_controllers.yaml",
-        "launch/display.launch.py", "launch/control.launch.py", "rviz/warehouse_arm.rviz",
+        "package.xml",
+        "CMakeLists.txt",
+        "urdf/warehouse_arm.urdf.xacro",
+        "urdf/warehouse_arm.urdf",
+        "urdf/warehouse_arm.ros2_control.xacro",
+        "srdf/warehouse_arm.srdf",
+        "config/ros2_controllers.yaml",
+        "launch/display.launch.py",
+        "launch/control.launch.py",
+        "rviz/warehouse_arm.rviz",
+        "evidence/known_poses.md",
     }
     for rel in files:
         text = (pkg / rel).read_text()
@@ -78,11 +90,15 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
     elsewhere.mkdir()
     assert run_cli("generate", str(spec_a), cwd=tmp_path / "a").returncode == 0
     assert run_cli("generate", str(spec_b.resolve()), cwd=elsewhere).returncode == 0
-    first = {k: (tmp_path / "a" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "a" / "generated" / PKG)}
-    second = {k: (tmp_path / "b" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "b" / "generated" / PKG)}
+    first = {
+        k: (tmp_path / "a" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "a" / "generated" / PKG)
+    }
+    second = {
+        k: (tmp_path / "b" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "b" / "generated" / PKG)
+    }
     assert first == second
     again = run_cli("generate", str(spec_a), cwd=tmp_path / "a")
-    assert again.returncode == 0 and "wrote 0 files, 10 unchanged" in again.stdout
+    assert again.returncode == 0 and "wrote 0 files, 11 unchanged" in again.stdout
     # and what the repository has committed is the same bytes
     committed = ROOT / "generated" / PKG
     assert {k: (committed / k).read_bytes() for k in first} == first
@@ -91,7 +107,7 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
 def test_failed_check_writes_nothing(generated: tuple[Path, Path], monkeypatch: pytest.MonkeyPatch) -> None:
     spec, pkg = generated
     before = snapshot(pkg)
-    spec.write_text(plant("{xyz: [0, 0, 85 mm], source: M09}", "{xyz: [0, 0, 86 mm], source: M09}"))
+    spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
     calls: list[str] = []
 
     def broken(files: dict[str, str], robot: object, where: Path) -> list[checks.Finding]:
@@ -108,7 +124,7 @@ def test_failed_check_writes_nothing(generated: tuple[Path, Path], monkeypatch: 
 def test_write_failure_midway_moves_nothing(generated: tuple[Path, Path], monkeypatch: pytest.MonkeyPatch) -> None:
     spec, pkg = generated
     before = snapshot(pkg)
-    spec.write_text(plant("{xyz: [0, 0, 85 mm], source: M09}", "{xyz: [0, 0, 86 mm], source: M09}"))
+    spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
     import builtins
 
     real_open = builtins.open
@@ -134,14 +150,14 @@ def test_hand_edit_guard(generated: tuple[Path, Path]) -> None:
     urdf = pkg / "urdf" / "warehouse_arm.urdf"
     edited = urdf.read_text().replace('value="28"', 'value="29"')
     urdf.write_text(edited)
-    spec.write_text(plant("{xyz: [0, 0, 85 mm], source: M09}", "{xyz: [0, 0, 86 mm], source: M09}"))
+    spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
     r = run_cli("generate", str(spec))
     assert r.returncode == 1
     assert "urdf/warehouse_arm.urdf was edited by hand" in r.stderr
     assert urdf.read_text() == edited
     r = run_cli("generate", "--force", str(spec))
     assert r.returncode == 0, r.stderr
-    assert 'value="28"' in urdf.read_text() and "0 0 0.086" in urdf.read_text()
+    assert 'value="28"' in urdf.read_text() and '<mass value="1.25"/>' in urdf.read_text()
 
 
 def test_check_catches_one_character_in_every_file(generated: tuple[Path, Path]) -> None:
@@ -151,7 +167,7 @@ def test_check_catches_one_character_in_every_file(generated: tuple[Path, Path])
         original = path.read_text()
         # change one character near the end of the file (past the header)
         i = len(original) - 3
-        changed = original[:i] + ("X" if original[i] != "X" else "Y") + original[i + 1:]
+        changed = original[:i] + ("X" if original[i] != "X" else "Y") + original[i + 1 :]
         path.write_text(changed)
         outcome = check(spec)
         assert outcome.failed, rel
@@ -197,12 +213,18 @@ def test_hostile_text_stays_text(tmp_path: Path) -> None:
     quoted = yaml.safe_dump(h, default_style='"').strip()
     text = text.replace("description: chassis, frame at the wheel-axle centre", f"description: {quoted}")
     text = text.replace("source: M09}", f"source: {quoted}}}")
-    text = text.replace("package: {version: 0.1.0, maintainer: WA-1 integration team,",
-                        f"package: {{version: 0.1.0, maintainer: {quoted},")
-    text = text.replace("    plugin: mock_components/GenericSystem\n",
-                        f"    plugin: mock_components/GenericSystem\n    params: {{note: {quoted}}}\n")
-    text = text.replace("      - geometry: {sphere: {diameter: 60 mm}}\n        material",
-                        f"      - name: {quoted}\n        geometry: {{sphere: {{diameter: 60 mm}}}}\n        material")
+    text = text.replace(
+        "package: {version: 0.1.0, maintainer: WA-1 integration team,",
+        f"package: {{version: 0.1.0, maintainer: {quoted},",
+    )
+    text = text.replace(
+        "    plugin: mock_components/GenericSystem\n",
+        f"    plugin: mock_components/GenericSystem\n    params: {{note: {quoted}}}\n",
+    )
+    text = text.replace(
+        "      - geometry: {sphere: {diameter: 60 mm}}\n        material",
+        f"      - name: {quoted}\n        geometry: {{sphere: {{diameter: 60 mm}}}}\n        material",
+    )
     spec = project(tmp_path, text)
     outcome = generate(spec)
     assert not outcome.failed, outcome.findings  # includes: xacro expands to exactly the URDF
@@ -239,7 +261,9 @@ def test_template_override_by_file_name(tmp_path: Path) -> None:
     pkg = tmp_path / "generated" / PKG
     assert "Frame Rate: 60" in (pkg / "rviz" / "warehouse_arm.rviz").read_text()
     committed = ROOT / "generated" / PKG
-    assert (pkg / "urdf" / "warehouse_arm.urdf").read_bytes() == (committed / "urdf" / "warehouse_arm.urdf").read_bytes()
+    assert (pkg / "urdf" / "warehouse_arm.urdf").read_bytes() == (
+        committed / "urdf" / "warehouse_arm.urdf"
+    ).read_bytes()
     assert run_cli("generate", "--templates", str(tmp_path / "nope"), str(spec)).returncode == 2
 
 
@@ -270,13 +294,19 @@ def test_derived_controller_values(generated: tuple[Path, Path]) -> None:
 def test_ros2_control_limits_from_the_joint_limits(generated: tuple[Path, Path]) -> None:
     _, pkg = generated
     root = etree.parse(str(pkg / "urdf" / "warehouse_arm.urdf")).getroot()
+
     def params(joint: str, iface: str) -> dict[str, float]:
         e = root.find(f"ros2_control/joint[@name='{joint}']/command_interface[@name='{iface}']")
         assert e is not None
         return {p.get("name"): float(p.text) for p in e.findall("param")}
-    assert params("shoulder_pan_joint", "position") == pytest.approx({"min": -math.radians(170), "max": math.radians(170)})
+
+    assert params("shoulder_pan_joint", "position") == pytest.approx(
+        {"min": -math.radians(170), "max": math.radians(170)}
+    )
     assert params("lift_joint", "position") == pytest.approx({"min": 0.0, "max": 0.3})
-    assert params("left_wheel_joint", "velocity") == pytest.approx({"min": -112 * math.pi / 30, "max": 112 * math.pi / 30})
+    assert params("left_wheel_joint", "velocity") == pytest.approx(
+        {"min": -112 * math.pi / 30, "max": 112 * math.pi / 30}
+    )
 
 
 def test_urdfdom_accepts_the_urdf(generated: tuple[Path, Path]) -> None:
@@ -316,9 +346,9 @@ def test_stale_generated_file_is_removed(generated: tuple[Path, Path]) -> None:
 def test_other_files_in_the_package_are_left_alone(generated: tuple[Path, Path]) -> None:
     spec, pkg = generated
     mine = pkg / "evidence" / "my_notes.md"
-    mine.parent.mkdir()
+    mine.parent.mkdir(exist_ok=True)
     mine.write_text("notes")
-    spec.write_text(plant("{xyz: [0, 0, 85 mm], source: M09}", "{xyz: [0, 0, 86 mm], source: M09}"))
+    spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
     assert not generate(spec).failed
     assert mine.read_text() == "notes"
 

@@ -42,8 +42,14 @@ def test_names_and_tree_match_the_sheet(robot) -> None:  # type: ignore[no-untyp
 
 
 def test_axes_match_the_sheet(robot) -> None:  # type: ignore[no-untyped-def]
-    axes = {"left_wheel_joint": (0, 1, 0), "right_wheel_joint": (0, 1, 0), "lift_joint": (0, 0, 1),
-            "shoulder_pan_joint": (0, 0, 1), "shoulder_lift_joint": (0, 1, 0), "elbow_joint": (0, 1, 0)}
+    axes = {
+        "left_wheel_joint": (0, 1, 0),
+        "right_wheel_joint": (0, 1, 0),
+        "lift_joint": (0, 0, 1),
+        "shoulder_pan_joint": (0, 0, 1),
+        "shoulder_lift_joint": (0, 1, 0),
+        "elbow_joint": (0, 1, 0),
+    }
     for name, axis in axes.items():
         assert robot.joint(name).axis == axis
 
@@ -122,7 +128,8 @@ def test_control_semantics_and_poses(robot) -> None:  # type: ignore[no-untyped-
     assert [i.name for i in wheel.state] == ["position", "velocity"]
     ready = next(s for s in robot.semantic.states if s.name == "ready")
     assert dict(ready.values) == pytest.approx(
-        {"lift_joint": 0.15, "shoulder_pan_joint": 0, "shoulder_lift_joint": 0, "elbow_joint": -math.pi / 2})
+        {"lift_joint": 0.15, "shoulder_pan_joint": 0, "shoulder_lift_joint": 0, "elbow_joint": -math.pi / 2}
+    )
     assert [p.name for p in robot.known_poses] == ["zero", "ready", "side_reach", "shoulder_up_30"]
     k5 = robot.known_poses[2]
     assert dict(k5.joints) == pytest.approx({"lift_joint": 0.3, "shoulder_pan_joint": math.pi / 2})

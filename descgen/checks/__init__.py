@@ -12,8 +12,27 @@ from pathlib import Path
 from ..findings import Finding
 from ..model import Robot
 from .controllers import controllers_yaml
+from .known_poses import known_poses
 from .package import package_xml
+from .semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
+from .urdf_roundtrip import urdf_roundtrip
+from .urdfdom import check_urdf
 from .xacro_expand import xacro_matches_urdf
+
+__all__ = [
+    "CHECKS",
+    "Finding",
+    "check_urdf",
+    "controllers_roundtrip",
+    "controllers_yaml",
+    "known_poses",
+    "package_xml",
+    "ros2_control_roundtrip",
+    "run_all",
+    "srdf_roundtrip",
+    "urdf_roundtrip",
+    "xacro_matches_urdf",
+]
 
 Files = dict[str, str]
 Check = Callable[[Files, Robot, Path], list[Finding]]
@@ -22,6 +41,12 @@ CHECKS: list[tuple[str, Check]] = [
     ("xacro expands to the URDF", xacro_matches_urdf),
     ("package.xml is a valid format 3 manifest", package_xml),
     ("controllers YAML names existing joints and interfaces", controllers_yaml),
+    ("yourdfpy reads back the model from the URDF", urdf_roundtrip),
+    ("the SRDF reads back as the model's semantics", srdf_roundtrip),
+    ("the ros2_control block reads back as the model's", ros2_control_roundtrip),
+    ("the controllers YAML reads back as the model's", controllers_roundtrip),
+    ("urdfdom's check_urdf accepts the URDF", check_urdf),
+    ("known poses match forward kinematics", known_poses),
 ]
 
 

@@ -9,7 +9,7 @@ import jinja2
 
 from ..model import Robot
 from . import context, header
-from .formatting import comment, num, vec
+from .formatting import comment, mdcell, num, vec
 
 XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
 
@@ -33,6 +33,7 @@ def environment(templates: Path | None = None) -> jinja2.Environment:
     env.filters["num"] = num
     env.filters["vec"] = vec
     env.filters["comment"] = comment
+    env.filters["mdcell"] = mdcell
     return env
 
 
@@ -55,6 +56,8 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         ]
     if robot.semantic is not None:
         files.append((f"srdf/{n}.srdf", "robot.srdf.j2", False))
+    if robot.known_poses:
+        files.append(("evidence/known_poses.md", "known_poses.md.j2", False))
     return files
 
 

@@ -74,6 +74,46 @@ def controllers_yaml(robot: Robot) -> str:
     return text.rstrip("\n")
 
 
+def _mm3(v: tuple[float, float, float] | None) -> str:
+    return "n/a" if v is None else ", ".join(f"{c * 1000:.1f}" for c in v)
+
+
+def known_pose_tables(robot: Robot) -> list[dict[str, Any]]:
+    """Rows of evidence/known_poses.md, one table per pose."""
+    from ..poses import evaluate
+
+    rows = evaluate(robot)
+    tables = []
+    for kp in robot.known_poses:
+        joints = []
+        for name, value in kp.joints:
+            j = robot.joint(name)
+            joints.append((name, j.show(value) if j else f"{value:.6g}"))
+        tables.append(
+            {
+                "name": kp.name,
+                "source": kp.source,
+                "joints": joints,
+                "rows": [
+                    {
+                        "frame": r.measurement.frame,
+                        "relative_to": r.relative_to,
+                        "measured": _mm3(r.measurement.xyz),
+                        "model": _mm3(r.model),
+                        "error": _mm3(r.error),
+                        "worst": "n/a" if r.error is None else f"{r.worst * 1000:.2f}",
+                        "tolerance": f"{r.measurement.tolerance * 1000:g}",
+                        "verdict": "pass" if r.ok else "**FAIL**",
+                        "source": r.measurement.source or "",
+                    }
+                    for r in rows
+                    if r.pose is kp
+                ],
+            }
+        )
+    return tables
+
+
 def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     """Context for one template family: ``xacro`` chooses property references and
     xacro-escaped free text over plain numbers and text."""
@@ -122,6 +162,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "semantic": sem,
         "disabled": disabled,
         "fixed_frame": root,
+        "poses": known_pose_tables(robot) if not xacro else [],
         "view_distance": num(max(2.0, 4 * extent)),
         "view_focal_z": num(0.5),
         "package": {

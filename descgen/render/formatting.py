@@ -47,3 +47,11 @@ def xacro_text(text: object) -> str:
 def yaml_scalar_safe(text: str) -> Markup:
     """Mark already-serialised YAML as safe for a template (no HTML escaping)."""
     return Markup(text)
+
+
+def mdcell(text: object) -> str:
+    """Text safe in a Markdown table cell: one line, pipes and markup escaped."""
+    s = " ".join(str(text).split())
+    for ch in "\\|`*_[]<>":
+        s = s.replace(ch, "\\" + ch)
+    return s

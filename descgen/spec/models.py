@@ -43,12 +43,28 @@ def _axis(value: object) -> object:
         if key in _AXES:
             return tuple(sign * c + 0.0 for c in _AXES[key])
         raise error("SPEC003", f"axis '{value}' is not one of +x, -x, +y, -y, +z, -z", "write e.g. +y or [0, 1, 0]")
-    if isinstance(value, list | tuple) and any(isinstance(c, str) for c in value):
-        raise error("SPEC003", "axis components are plain numbers (a direction has no unit)", "write e.g. [0, 1, 0]")
+    if isinstance(value, list | tuple):
+        parts = [_yaml11_float(c) for c in value]
+        if any(isinstance(c, str) for c in parts):
+            raise error(
+                "SPEC003", "axis components are plain numbers (a direction has no unit)", "write e.g. [0, 1, 0]"
+            )
+        return parts
+    return value
+
+
+def _yaml11_float(value: object) -> object:
+    """PyYAML (YAML 1.1) reads ``1e-3`` as text; accept it as the number it means."""
+    if isinstance(value, str):
+        try:
+            return float(value)
+        except ValueError:
+            return value
     return value
 
 
 def _finite(value: object) -> object:
+    value = _yaml11_float(value)
     if isinstance(value, float) and not math.isfinite(value):
         raise error("SPEC003", "not a finite number", "write a finite number")
     return value

@@ -1,0 +1,64 @@
+"""Forward kinematics on the SI model (numpy).
+
+A joint's transform is ``origin * motion(q)``: rotation by q about the joint axis (in the
+joint frame) for revolute and continuous joints, translation by q along it for prismatic
+joints; fixed, floating and planar joints sit at their origin (known poses set only
+one-degree-of-freedom joints). The axis is normalised (urdfdom does not; JOINT002 flags
+an axis that is not unit length). Origins use URDF's fixed-axis roll-pitch-yaw.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from .model import Joint, Robot
+from .transforms import Mat, axis_angle_matrix, pose_matrix
+
+
+def motion(j: Joint, q: float) -> Mat:
+    t = np.eye(4)
+    if q == 0 or j.axis is None:
+        return t
+    axis = np.asarray(j.axis, dtype=float)
+    n = float(np.linalg.norm(axis))
+    if n == 0:
+        return t
+    if j.type in ("revolute", "continuous"):
+        t[:3, :3] = axis_angle_matrix(tuple(float(c) for c in axis / n), q)
+    elif j.type == "prismatic":
+        t[:3, 3] = q * axis / n
+    return t
+
+
+def joint_transform(j: Joint, q: float = 0.0) -> Mat:
+    """Pose of the child link frame in the parent link frame."""
+    return pose_matrix(j.origin.xyz, j.origin.rpy) @ motion(j, q)
+
+
+def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat]:
+    """Pose of every link reachable from the root, in the root frame."""
+    values = q or {}
+    root = robot.root()
+    if root is None:
+        return {}
+    poses: dict[str, Mat] = {root: np.eye(4)}
+    todo = [root]
+    while todo:
+        parent = todo.pop()
+        for j in robot.child_joints(parent):
+            if j.child is None or j.child in poses:
+                continue
+            poses[j.child] = poses[parent] @ joint_transform(j, values.get(j.name, 0.0))
+            todo.append(j.child)
+    return poses
+
+
+def relative(poses: Mapping[str, Mat], frame: str, base: str | None) -> Mat | None:
+    """Pose of ``frame`` in ``base`` (the root when None)."""
+    if frame not in poses or (base is not None and base not in poses):
+        return None
+    if base is None:
+        return poses[frame]
+    return np.linalg.inv(poses[base]) @ poses[frame]
