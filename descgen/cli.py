@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from . import __version__, report
-from .findings import Finding, InputError, Where
+from .findings import Finding, InputError, Where, summary
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
 
@@ -176,6 +176,91 @@ def _cmd_poses(args: argparse.Namespace) -> int:
     return exit_code(found)
 
 
+def _audit_options(args: argparse.Namespace) -> object:
+    from .audit.inputs import Options
+
+    mappings = {}
+    for item in args.xacro_arg or []:
+        name, sep, value = item.partition(":=")
+        if not sep or not name:
+            raise InputError(
+                [
+                    Finding(
+                        "READ005",
+                        "error",
+                        f"--xacro-arg '{item}' is not name:=value",
+                        "write e.g. --xacro-arg use_gripper:=true",
+                        "option",
+                        Where("<command line>"),
+                    )
+                ]
+            )
+        mappings[name] = value
+    return Options(
+        Path(args.srdf) if args.srdf else None,
+        Path(args.controllers) if args.controllers else None,
+        mappings,
+        tuple(Path(p) for p in args.package_path or []),
+    )
+
+
+def _cmd_audit(args: argparse.Namespace) -> int:
+    from .audit.inputs import audit
+
+    options = _audit_options(args)
+    found: list[Finding] = []
+    unusable = False
+    for path in args.path:
+        try:
+            found += audit(Path(path), options)  # type: ignore[arg-type]
+        except InputError as exc:
+            found += exc.findings
+            unusable = True
+    if args.format == "json":
+        sys.stdout.write(report.as_json(found))
+    elif args.format == "sarif":
+        sys.stdout.write(report.sarif(found, base=str(Path.cwd())))
+    else:
+        sys.stderr.write(report.text(found))
+        counts = ", ".join(f"{n} {k}" for k, n in summary(found).items())
+        print(f"audited {len(args.path)} description(s): {counts}")
+    return exit_code(found, input_error=unusable, strict=args.strict)
+
+
+def _cmd_faults(args: argparse.Namespace) -> int:
+    from .audit.inputs import load_description
+    from .faults import plant_all
+
+    robot, _ = load_description(Path(args.path), _audit_options(args))  # type: ignore[arg-type]
+    results = plant_all(robot)
+    if args.format == "json":
+        doc = {
+            "path": args.path,
+            "faults": [
+                {
+                    "fault": r.fault.name,
+                    "planted": r.planted,
+                    "applicable": r.applicable,
+                    "caught": r.caught,
+                    "by": None if r.by is None else r.by.as_dict(),
+                }
+                for r in results
+            ],
+            "caught": sum(r.caught for r in results),
+            "missed": sum(r.applicable and not r.caught for r in results),
+        }
+        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+    else:
+        for r in results:
+            verdict = "caught" if r.caught else "n/a" if not r.applicable else "MISSED"
+            by = f" by {r.by.code}: {r.by.message}" if r.by else ""
+            print(f"{verdict:<7} {r.fault.name:<28} {r.planted}{by}")
+        caught = sum(r.caught for r in results)
+        applicable = sum(r.applicable for r in results)
+        print(f"{caught} of {applicable} planted faults caught ({len(results) - applicable} not applicable)")
+    return EXIT_FAILED if any(r.applicable and not r.caught for r in results) else EXIT_OK
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -184,9 +269,23 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 def _cmd_rules(args: argparse.Namespace) -> int:
-    from .audit import iter_rules
+    from .audit import RULES, iter_rules
 
-    for info in iter_rules():
+    known = list(iter_rules())
+    if args.code and args.code not in RULES:
+        raise InputError(
+            [
+                Finding(
+                    "RULE001",
+                    "error",
+                    f"no rule {args.code}",
+                    "run descgen rules for the list",
+                    "option",
+                    Where("<command line>"),
+                )
+            ]
+        )
+    for info in known:
         if args.code and info.code != args.code:
             continue
         if args.code:
@@ -218,6 +317,30 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--out", help="output root (default: generated/ beside specs/)")
     c.add_argument("--templates", help="folder of template overrides")
     c.set_defaults(fn=_cmd_check)
+
+    a = sub.add_parser("audit", help="audit specs, URDFs or Xacros (with an SRDF and controllers YAML)")
+    a.add_argument("path", nargs="+")
+    a.add_argument("--srdf", help="SRDF of the robot")
+    a.add_argument("--controllers", help="controller_manager YAML of the robot")
+    a.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE", help="argument for a Xacro (repeatable)")
+    a.add_argument(
+        "--package-path",
+        action="append",
+        metavar="DIR",
+        help="folder holding ROS packages, for $(find) and package:// (repeatable)",
+    )
+    a.add_argument("--format", choices=("text", "json", "sarif"), default="text")
+    a.add_argument("--strict", action="store_true", help="warnings count as errors")
+    a.set_defaults(fn=_cmd_audit)
+
+    f = sub.add_parser("faults", help="plant each fault of the catalogue in a copy and audit it")
+    f.add_argument("path")
+    f.add_argument("--srdf")
+    f.add_argument("--controllers")
+    f.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE")
+    f.add_argument("--package-path", action="append", metavar="DIR")
+    f.add_argument("--format", choices=("text", "json"), default="text")
+    f.set_defaults(fn=_cmd_faults)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

@@ -119,6 +119,9 @@ class Link:
     def subject(self) -> str:
         return f"link:{self.name}"
 
+    def shapes(self) -> tuple[Visual | Collision, ...]:
+        return (*self.visuals, *self.collisions)
+
 
 @dataclass(frozen=True)
 class Limit:

@@ -21,3 +21,74 @@ def as_json(findings: Iterable[Finding], **extra: object) -> str:
     fs = list(findings)
     doc = {"findings": [f.as_dict() for f in fs], "summary": summary(fs), **extra}
     return json.dumps(doc, indent=2, sort_keys=False) + "\n"
+
+
+_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
+
+
+def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
+    """SARIF 2.1.0 (what GitHub code scanning reads): one run, the rules that fired (their
+    docs as help), one result per finding."""
+    from pathlib import Path
+
+    from . import __version__
+    from .audit import RULES, iter_rules
+
+    fs = list(findings)
+    list(iter_rules())  # registers every rule
+    codes = sorted({f.code for f in fs})
+    rules = []
+    for code in codes:
+        info = RULES.get(code)
+        entry: dict[str, object] = {"id": code}
+        if info is not None:
+            entry.update(
+                {
+                    "name": info.name,
+                    "shortDescription": {"text": info.summary or info.name},
+                    "fullDescription": {"text": " ".join(info.doc.split())},
+                    "help": {"text": info.doc.strip(), "markdown": info.doc.strip()},
+                    "defaultConfiguration": {"level": _LEVEL[info.severity]},
+                }
+            )
+        else:
+            entry["shortDescription"] = {"text": f"descgen {code}"}
+        rules.append(entry)
+    index = {code: i for i, code in enumerate(codes)}
+    results = []
+    for f in fs:
+        uri = f.where.file.removesuffix(" (expanded)")
+        if base is not None:
+            try:
+                uri = Path(uri).resolve().relative_to(Path(base).resolve()).as_posix()
+            except ValueError:
+                uri = Path(uri).as_posix()
+        location: dict[str, object] = {"artifactLocation": {"uri": uri}}
+        if f.where.line > 0:
+            region: dict[str, int] = {"startLine": f.where.line}
+            if f.where.col > 0:
+                region["startColumn"] = f.where.col
+            location["region"] = region
+        message = f.message + (f" (hint: {f.hint})" if f.hint else "")
+        results.append(
+            {
+                "ruleId": f.code,
+                "ruleIndex": index[f.code],
+                "level": _LEVEL[f.severity],
+                "message": {"text": message},
+                "locations": [
+                    {"physicalLocation": location, **({"logicalLocations": [{"name": f.subject}]} if f.subject else {})}
+                ],
+            }
+        )
+    doc = {
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {"driver": {"name": "descgen", "version": __version__, "rules": rules}},
+                "results": results,
+            }
+        ],
+    }
+    return json.dumps(doc, indent=2) + "\n"

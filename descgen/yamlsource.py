@@ -119,12 +119,11 @@ def loads(text: str, file: str = "<string>") -> Document:
     return Document(file, data, builder.key_marks, builder.value_marks, text)
 
 
-_constructor = yaml.SafeLoader("")
-
-
 class _Builder:
     def __init__(self, file: str) -> None:
         self.file = file
+        # a constructor per document: its cache would otherwise keep every node alive
+        self.constructor = yaml.SafeLoader("")
         self.key_marks: dict[Path_, tuple[int, int]] = {}
         self.value_marks: dict[Path_, tuple[int, int]] = {}
         self.count = 0
@@ -192,7 +191,7 @@ class _Builder:
     def construct(self, node: yaml.Node) -> Any:
         """A scalar's Python value; explicit tags that cannot be built are errors, not crashes."""
         try:
-            return _constructor.construct_object(node)
+            return self.constructor.construct_object(node)
         except (yaml.YAMLError, ValueError, TypeError, OverflowError, IndexError, KeyError, AttributeError) as exc:
             what = getattr(exc, "problem", None) or str(exc) or type(exc).__name__
             raise _fail(

@@ -128,7 +128,12 @@ def test_mm_as_m_message_shows_si_written_and_range(tmp_path: Path) -> None:
 def test_plausibility_override_accepts_a_big_robot(tmp_path: Path) -> None:
     text = plant("xyz: [25 mm, 0, 40 mm]", "xyz: [25 m, 0, 40 mm]")
     text = plant("require_sources: true\n", "require_sources: true\nplausibility:\n  offset: {max: 30 m}\n", text)
-    assert errors_of(text, tmp_path) == []
+    found = errors_of(text, tmp_path)
+    assert not any(f.code == "UNIT004" for f in found)
+    # the range no longer objects, but the offset is 50 times the robot's typical link (UNIT011),
+    # and a 95 g camera 25 m out is more than the arm can hold (JOINT008)
+    assert {f.code for f in found} == {"JOINT008", "UNIT011"}
+    assert any("elbow_joint" in f.message for f in found)
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess[str]:

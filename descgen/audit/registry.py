@@ -6,9 +6,11 @@ are stable: a retired code is never reused.
 
 from __future__ import annotations
 
+import inspect
 import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
+from typing import Literal
 
 from ..findings import Finding, Severity, Where
 from ..model import Robot
@@ -20,6 +22,9 @@ _HEADINGS = ("## What it does", "## Why is this bad?")
 RuleFn = Callable[[Robot], Iterable[Finding]]
 
 
+Stage = Literal["input", "check"]
+
+
 @dataclass(frozen=True)
 class RuleInfo:
     code: str
@@ -27,6 +32,7 @@ class RuleInfo:
     severity: Severity
     doc: str
     fn: RuleFn
+    stage: Stage = "input"  # "input": its errors make a spec invalid; "check": a claim failed
 
     @property
     def summary(self) -> str:
@@ -37,17 +43,17 @@ class RuleInfo:
 RULES: dict[str, RuleInfo] = {}
 
 
-def rule(code: str, name: str, severity: Severity) -> Callable[[RuleFn], RuleFn]:
+def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Callable[[RuleFn], RuleFn]:
     def register(fn: RuleFn) -> RuleFn:
         if not _CODE.match(code):
             raise ValueError(f"rule code {code!r} is not a category prefix plus 3 digits")
         if code in RULES or any(r.name == name for r in RULES.values()):
             raise ValueError(f"duplicate rule {code} {name}")
-        doc = fn.__doc__ or ""
+        doc = inspect.cleandoc(fn.__doc__ or "")
         missing = [h for h in _HEADINGS if h not in doc]
         if missing:
             raise ValueError(f"rule {code} doc lacks {missing}")
-        RULES[code] = RuleInfo(code, name, severity, doc, fn)
+        RULES[code] = RuleInfo(code, name, severity, doc, fn, stage)
         return fn
 
     return register
@@ -76,16 +82,17 @@ def at(
     return Finding(code, sev, message, hint, subj, where)
 
 
-def run(robot: Robot, codes: Iterable[str] | None = None) -> list[Finding]:
-    """All registered rules (or the given codes) over one robot, in code order."""
+def run(robot: Robot, codes: Iterable[str] | None = None, stage: Stage | None = None) -> list[Finding]:
+    """All registered rules (or the given codes, or one stage) over one robot, in code order."""
     from . import rules  # noqa: F401  (registers every rule module)
 
     wanted = set(codes) if codes is not None else None
     out: list[Finding] = []
     for code in sorted(RULES):
-        if wanted is not None and code not in wanted:
+        info = RULES[code]
+        if (wanted is not None and code not in wanted) or (stage is not None and info.stage != stage):
             continue
-        out.extend(RULES[code].fn(robot))
+        out.extend(info.fn(robot))
     return out
 
 

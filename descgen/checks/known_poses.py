@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..audit import run
 from ..findings import Finding
 from ..model import Robot
-from ..poses import findings
 
 
 def known_poses(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
-    return findings(robot)
+    """The check-stage rules (POSE010: measured poses against forward kinematics)."""
+    return run(robot, stage="check")

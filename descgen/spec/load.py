@@ -25,18 +25,21 @@ class Loaded:
     findings: tuple[Finding, ...]  # warnings and infos from the whole-model rules
 
 
-def load_spec(path: str | Path, display: str | None = None) -> Loaded:
-    """Read, validate and build one spec. Raises :class:`InputError` with every error."""
+def load_spec(path: str | Path, display: str | None = None, rules: bool = True) -> Loaded:
+    """Read, validate and build one spec. Raises :class:`InputError` with every error.
+
+    With ``rules=False`` the whole-model rules are not run (the audit runs them itself
+    and reports their errors as findings, not as unusable input)."""
     p = Path(path)
     doc = load(p, display or str(path))
-    return from_document(doc)
+    return from_document(doc, rules)
 
 
-def load_spec_text(text: str, file: str = "<string>") -> Loaded:
-    return from_document(loads(text, file))
+def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loaded:
+    return from_document(loads(text, file), rules)
 
 
-def from_document(doc: Document) -> Loaded:
+def from_document(doc: Document, rules: bool = True) -> Loaded:
     if not isinstance(doc.data, dict):
         raise InputError(
             [
@@ -62,7 +65,7 @@ def from_document(doc: Document) -> Loaded:
         problems += missing_sources(doc, spec)
     digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()
     robot = replace(robot, spec_hash=digest, extras={"ranges": ranges})
-    findings = run_rules(robot)
+    findings = run_rules(robot, stage="input") if rules else []
     problems += errors(findings)
     if problems:
         raise InputError(_ordered(problems))

@@ -237,3 +237,73 @@ def update_rate_not_whole(robot: Robot) -> Iterator[Finding]:
             "write e.g. 100 Hz",
             subject="ros2_control",
         )
+
+
+@rule("CTRL008", "command-limit-beyond-urdf", "error")
+def command_limit_beyond_urdf(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Compares each command interface's `min`/`max` with the joint's URDF limits (position
+    with lower/upper, velocity and effort with their limits).
+    ## Why is this bad?
+    ros2_control uses them to tighten the URDF limits; wider values are ignored on new
+    releases and trusted on older ones, so a command beyond the joint's range reaches the
+    hardware.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    for cj in rc.joints:
+        j = robot.joint(cj.name)
+        if j is None or j.limit is None:
+            continue
+        lm = j.limit
+        for iface in cj.command:
+            if iface.name == "position" and j.type in ("revolute", "prismatic"):
+                lo, hi = lm.lower, lm.upper
+            elif iface.name == "velocity" and lm.velocity is not None:
+                lo, hi = -abs(lm.velocity), abs(lm.velocity)
+            elif iface.name == "effort" and lm.effort is not None:
+                lo, hi = -abs(lm.effort), abs(lm.effort)
+            else:
+                continue
+            tol = 1e-9
+            if iface.max is not None and hi is not None and iface.max > hi + tol:
+                yield at(
+                    "CTRL008",
+                    cj,
+                    f"'{cj.name}/{iface.name}' command max {iface.max:.6g} is beyond the URDF limit {hi:.6g}",
+                    "make the command limit equal to or inside the joint limit",
+                    subject=f"ros2_control:{cj.name}",
+                )
+            if iface.min is not None and lo is not None and iface.min < lo - tol:
+                yield at(
+                    "CTRL008",
+                    cj,
+                    f"'{cj.name}/{iface.name}' command min {iface.min:.6g} is beyond the URDF limit {lo:.6g}",
+                    "make the command limit equal to or inside the joint limit",
+                    subject=f"ros2_control:{cj.name}",
+                )
+
+
+@rule("CTRL009", "controller-names-unknown-joint", "error")
+def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds controllers whose joint lists (`joints`, `left_wheel_names`, `right_wheel_names`)
+    name joints the URDF does not have.
+    ## Why is this bad?
+    The controller fails to configure on the robot; nothing moves.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    for c in rc.controllers:
+        for key in ("joints", "left_wheel_names", "right_wheel_names"):
+            for name in _list(c.param(key)):
+                if robot.joint(str(name)) is None:
+                    yield at(
+                        "CTRL009",
+                        c,
+                        f"controller '{c.name}' {key} names '{name}', which is not a URDF joint",
+                        "fix the joint name",
+                        subject=f"controller:{c.name}",
+                    )

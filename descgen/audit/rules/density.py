@@ -5,9 +5,12 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ... import inertia, units
-from ...findings import Finding
+from ...findings import Finding, Severity
 from ...model import Robot
 from ..registry import at, rule
+from .scale import dims
+
+PLACEHOLDER = 0.005  # metres: shapes smaller than this everywhere are stand-ins
 
 
 def density_range(robot: Robot) -> units.Range:
@@ -35,6 +38,8 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
         shapes = [c.geometry for c in lk.collisions] or [v.geometry for v in lk.visuals]
         if not shapes or any(g is None for g in shapes):
             continue
+        if max((d for g in shapes for d in dims(g)), default=0.0) < PLACEHOLDER:
+            continue  # a millimetre-sized stand-in, not the part's shape
         vols = [inertia.volume(g) for g in shapes if g is not None]
         if any(v is None for v in vols):
             continue  # meshes: volume unknown without reading them
@@ -49,11 +54,15 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
             hint = "the mass looks 1000x too large: grams written as kilograms?"
         elif rho < r.low and r.low <= rho * 1000 <= r.high:
             hint = "the mass looks 1000x too small (kilograms written as grams?), or the geometry 10x too large"
+        # heavier than any metal is impossible; lighter than foam may be a light part in a
+        # generous shape, unless it is a thousand times lighter still
+        severity: Severity = "error" if rho > r.high or rho < r.low / 1000 else "warning"
         yield at(
             "UNIT010",
             lk.inertial,
             f"link '{lk.name}' mass {lk.inertial.mass:.6g} kg in {vol:.4g} m^3 of geometry "
             f"implies {rho:.4g} kg/m^3, outside {r.low:g} to {r.high:g}",
             hint,
+            severity=severity,
             subject=lk.subject,
         )

@@ -6,8 +6,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ...findings import Finding
-from ...model import Robot
+from ...findings import Finding, Severity
+from ...model import Link, Robot
 from ..registry import at, rule
 
 
@@ -36,6 +36,7 @@ def non_positive_mass(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     urdfdom accepts negative mass; physics engines reject it or explode.
     """
+    moving = _moving_links(robot)
     for lk in robot.links:
         if lk.inertial is None:
             continue
@@ -44,14 +45,31 @@ def non_positive_mass(robot: Robot) -> Iterator[Finding]:
             yield at(
                 "INER001", lk.inertial, f"link '{lk.name}' inertial has no mass", "add <mass value>", subject=lk.subject
             )
-        elif mass <= 0:
+        elif mass < 0 or (mass == 0 and (lk.name in moving or _has_tensor(lk))):
+            why = "" if mass < 0 else " but it moves" if lk.name in moving else " but it has an inertia tensor"
             yield at(
                 "INER001",
                 lk.inertial,
-                f"link '{lk.name}' mass is {mass:.6g} kg",
+                f"link '{lk.name}' mass is {mass:.6g} kg{why}",
                 "write the measured mass (> 0)",
                 subject=lk.subject,
             )
+
+
+def _has_tensor(lk: Link) -> bool:
+    t = lk.inertial.inertia if lk.inertial else None
+    return t is not None and any(abs(v) > 0 for v in (t.ixx, t.ixy, t.ixz, t.iyy, t.iyz, t.izz))
+
+
+def _weighed(lk: Link) -> bool:
+    """A link that carries mass (a massless, tensorless inertial is a placeholder)."""
+    i = lk.inertial
+    return i is not None and i.inertia is not None and i.mass is not None and (i.mass > 0 or _has_tensor(lk))
+
+
+def _severity(robot: Robot, lk: Link, moving: set[str]) -> Severity:
+    """Inertia defects break simulation of moving links; a fixed link's is merged into its parent."""
+    return "error" if lk.name in moving else "warning"
 
 
 @rule("INER002", "moving-link-without-mass", "error")
@@ -75,16 +93,18 @@ def inertia_not_positive_definite(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     A tensor with a zero or negative eigenvalue is not a rigid body; urdfdom accepts it.
     """
+    moving = _moving_links(robot)
     for lk in robot.links:
-        if lk.inertial is None or lk.inertial.inertia is None:
+        if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
         eig = np.linalg.eigvalsh(np.array(lk.inertial.inertia.matrix()))
-        if eig.min() <= 0:
+        if eig.min() <= 1e-15 * max(1.0, float(abs(eig).max())):
             yield at(
                 "INER003",
                 lk.inertial,
                 f"link '{lk.name}' inertia has principal moments {_fmt(eig)}: not positive definite",
                 "recompute the tensor (or use from: collision)",
+                severity=_severity(robot, lk, moving),
                 subject=lk.subject,
             )
 
@@ -96,19 +116,112 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     No real mass distribution violates it; the numbers were mistyped or mixed units.
     """
+    moving = _moving_links(robot)
     for lk in robot.links:
-        if lk.inertial is None or lk.inertial.inertia is None:
+        if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
         eig = np.sort(np.linalg.eigvalsh(np.array(lk.inertial.inertia.matrix())))
-        if eig.min() > 0 and eig[0] + eig[1] < eig[2] * (1 - 1e-9):
+        if eig.min() > 0 and eig.max() > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9):
             yield at(
                 "INER004",
                 lk.inertial,
                 f"link '{lk.name}' principal moments {_fmt(eig)} break the triangle inequality",
                 "recompute the tensor; a value may be in the wrong unit",
+                severity=_severity(robot, lk, moving),
                 subject=lk.subject,
             )
 
 
 def _fmt(values: object) -> str:
     return "[" + ", ".join(f"{float(v):.4g}" for v in values) + "]"  # type: ignore[attr-defined]
+
+
+DENSEST = 22_600.0  # kg/m^3, osmium: no solid part is denser
+
+
+@rule("INER006", "inertia-too-small-for-mass", "error")
+def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Checks the tensor against the most compact body the mass could be: a solid sphere of
+    the densest metal. Half the trace of the tensor (the sum of m r^2) cannot be smaller
+    than that sphere's 3/5 m r^2.
+    ## Why is this bad?
+    A tensor that small cannot belong to that mass: either the mass is in the wrong unit
+    (grams written as kilograms) or the tensor is a placeholder. Simulators then spin
+    the link far too easily.
+    """
+    moving = _moving_links(robot)
+    for lk in robot.links:
+        i = lk.inertial
+        if i is None or i.inertia is None or i.mass is None or i.mass <= 0:
+            continue
+        t = i.inertia
+        half_trace = (t.ixx + t.iyy + t.izz) / 2
+        r_min = (3 * i.mass / (4 * np.pi * DENSEST)) ** (1 / 3)
+        least = 0.6 * i.mass * r_min**2
+        if half_trace < least * (1 - 1e-9):
+            yield at(
+                "INER006",
+                i,
+                f"link '{lk.name}' inertia (sum of m r^2 = {half_trace:.3g} kg*m^2) is too small for "
+                f"{i.mass:.4g} kg: even a solid osmium sphere has {least:.3g}",
+                "check the mass unit (g vs kg) and recompute the tensor",
+                severity=_severity(robot, lk, moving),
+                subject=lk.subject,
+            )
+
+
+def _aabb(robot: Robot, link: str) -> tuple[np.ndarray, np.ndarray] | None:
+    """Axis-aligned box around a link's collision primitives, in the link frame."""
+    from ...model import Box, Cylinder, Sphere
+    from ...transforms import rpy_matrix
+
+    lk = robot.link(link)
+    if lk is None or not lk.collisions:
+        return None
+    lows, highs = [], []
+    for c in lk.collisions:
+        g = c.geometry
+        if isinstance(g, Box):
+            half = np.array(g.size) / 2
+        elif isinstance(g, Cylinder):
+            half = np.array([g.radius, g.radius, g.length / 2])
+        elif isinstance(g, Sphere):
+            half = np.array([g.radius] * 3)
+        else:
+            return None  # a mesh: extent unknown without reading it
+        r = rpy_matrix(c.origin.rpy)
+        extent = np.abs(r) @ half
+        centre = np.array(c.origin.xyz)
+        lows.append(centre - extent)
+        highs.append(centre + extent)
+    return np.min(lows, axis=0), np.max(highs, axis=0)
+
+
+@rule("INER005", "com-outside-geometry", "warning")
+def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a centre of mass outside the box around the link's collision primitives by more
+    than a quarter of that box's size.
+    ## Why is this bad?
+    The mass sits where there is no material: usually an origin in the wrong frame or unit.
+    """
+    for lk in robot.links:
+        i = lk.inertial
+        if i is None or i.mass is None or i.mass <= 0:
+            continue
+        box = _aabb(robot, lk.name)
+        if box is None:
+            continue
+        low, high = box
+        size = float(np.linalg.norm(high - low))
+        com = np.array(i.origin.xyz)
+        outside = float(np.linalg.norm(np.maximum(low - com, 0) + np.maximum(com - high, 0)))
+        if outside > 0.25 * size and outside > 1e-3:
+            yield at(
+                "INER005",
+                i,
+                f"link '{lk.name}' centre of mass is {outside * 1000:.1f} mm outside its collision geometry",
+                "check the inertial origin (frame and unit)",
+                subject=lk.subject,
+            )

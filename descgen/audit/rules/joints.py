@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+import numpy as np
+
 from ...findings import Finding
 from ...model import Robot
 from ..registry import at, rule
@@ -170,3 +172,135 @@ def bad_mimic(robot: Robot) -> Iterator[Finding]:
             )
         elif target.type == "fixed":
             yield at("JOINT007", j, f"joint '{j.name}' mimics fixed joint '{target.name}'", "mimic a moving joint")
+
+
+G = 9.80665
+
+
+def _subtree_mass_moment(robot: Robot, joint_child: str, poses: dict[str, np.ndarray]) -> tuple[float, np.ndarray]:
+    """Total mass below (and including) a link, and the sum of m * centre of mass (root frame)."""
+    from ...transforms import pose_matrix
+
+    total, moment = 0.0, np.zeros(3)
+    todo, seen = [joint_child], set()
+    while todo:
+        name = todo.pop()
+        if name in seen or name not in poses:
+            continue
+        seen.add(name)
+        lk = robot.link(name)
+        if lk is not None and lk.inertial is not None and lk.inertial.mass and lk.inertial.mass > 0:
+            com = poses[name] @ pose_matrix(lk.inertial.origin.xyz, lk.inertial.origin.rpy)
+            total += lk.inertial.mass
+            moment += lk.inertial.mass * com[:3, 3]
+        todo += [j.child for j in robot.child_joints(name) if j.child]
+    return total, moment
+
+
+@rule("JOINT008", "effort-below-gravity-load", "error")
+def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Computes the static gravity torque (or force) each revolute or prismatic joint must
+    hold: the mass of everything it carries times the lever arm of their common centre of
+    mass, over the joint's own range (other joints at zero, gravity along -z of the root),
+    and flags an effort limit below it.
+    ## Why is this bad?
+    The joint cannot hold its own arm up: on the robot it sags or faults; in simulation it
+    falls while the description claims it can lift.
+    """
+    from ...kinematics import forward
+    from ...transforms import axis_angle_matrix
+
+    poses = forward(robot)
+    if not poses:
+        return
+    g = np.array([0.0, 0.0, -G])
+    for j in robot.joints:
+        if j.type not in ("revolute", "prismatic") or j.limit is None or j.limit.effort is None or j.child is None:
+            continue
+        if j.limit.effort == 0:
+            continue  # JOINT005 reports a zero effort limit
+        if j.child not in poses or j.axis is None or math.hypot(*j.axis) == 0:
+            continue
+        mass, moment = _subtree_mass_moment(robot, j.child, poses)
+        if mass <= 0:
+            continue
+        frame = poses[j.child]  # the joint frame at zero: its axis is in child coordinates
+        axis = frame[:3, :3] @ (np.array(j.axis) / math.hypot(*j.axis))
+        if j.type == "prismatic":
+            need = abs(float(np.dot(mass * g, axis)))
+            what = f"{need:.4g} N along its axis"
+        else:
+            lever = moment - mass * frame[:3, 3]  # sum m (c - p)
+            lo = j.limit.lower if j.limit.lower is not None else -math.pi
+            hi = j.limit.upper if j.limit.upper is not None else math.pi
+            k = np.cross(axis, g)
+            need = max(
+                abs(float(np.dot(axis_angle_matrix(tuple(axis), q) @ lever, k))) for q in np.linspace(lo, hi, 73)
+            )
+            what = f"{need:.4g} N*m"
+        if need > abs(j.limit.effort) * (1 + 1e-9) and need > 1e-6:
+            yield at(
+                "JOINT008",
+                j,
+                f"joint '{j.name}' must hold {what} against gravity ({mass:.3g} kg carried) but its "
+                f"effort limit is {abs(j.limit.effort):.4g}",
+                "check the effort limit (and the masses it carries)",
+            )
+
+
+_SIDES = {"left": "right", "l": "r", "lf": "rf", "lh": "rh", "fl": "fr", "rl": "rr", "hl": "hr", "lb": "rb", "bl": "br"}
+_SIDES.update({v: k for k, v in list(_SIDES.items())})
+
+
+def mirror_name(name: str) -> str | None:
+    """The name with its left/right token swapped (``l_elbow`` -> ``r_elbow``, ``FL_hip`` -> ``FR_hip``)."""
+    parts = name.split("_")
+    for i, p in enumerate(parts):
+        swap = _SIDES.get(p.lower())
+        if swap is not None:
+            swap = swap.upper() if p.isupper() else swap.capitalize() if p[:1].isupper() else swap
+            return "_".join([*parts[:i], swap, *parts[i + 1 :]])
+    return None
+
+
+@rule("JOINT009", "mirror-axes-disagree", "warning")
+def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    For left/right joint pairs (names differing only by left/right, l/r, FL/FR, ...) that sit
+    mirror-symmetric about the root's x-z plane, checks their axes are mirror images too.
+    ## Why is this bad?
+    A copied leg or arm with one axis changed turns the wrong way; nothing else notices.
+    """
+    from ...kinematics import forward
+
+    poses = forward(robot)
+    flip = np.diag([1.0, -1.0, 1.0])
+    done: set[str] = set()
+    for j in robot.joints:
+        other_name = mirror_name(j.name)
+        other = robot.joint(other_name) if other_name else None
+        if other is None or j.name in done or j.type not in ("revolute", "continuous", "prismatic"):
+            continue
+        done |= {j.name, other.name}
+        if other.type != j.type or j.axis is None or other.axis is None or not j.child or not other.child:
+            continue
+        if j.child not in poses or other.child not in poses:
+            continue
+        pa, pb = poses[j.child], poses[other.child]
+        scale = max(float(np.linalg.norm(pa[:3, 3])), 1e-3)
+        if np.linalg.norm(flip @ pa[:3, 3] - pb[:3, 3]) > 0.01 * scale:
+            continue  # not placed as mirror images: nothing to compare
+        na, nb = math.hypot(*j.axis), math.hypot(*other.axis)
+        if na == 0 or nb == 0:
+            continue
+        a = flip @ (pa[:3, :3] @ np.array(j.axis) / na)
+        b = pb[:3, :3] @ np.array(other.axis) / nb
+        if abs(abs(float(np.dot(a, b))) - 1) > 1e-3:
+            angle = math.degrees(math.acos(min(1.0, abs(float(np.dot(a, b))))))
+            yield at(
+                "JOINT009",
+                other,
+                f"joints '{j.name}' and '{other.name}' mirror each other but their axes are {angle:.1f} deg apart",
+                f"check the axis of '{other.name}' (or of '{j.name}')",
+            )

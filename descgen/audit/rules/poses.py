@@ -77,3 +77,17 @@ def pose_outside_limits(robot: Robot) -> Iterator[Finding]:
             if j is not None and not math.isnan(value) and j.outside_limits(value):
                 message = f"known pose '{kp.name}' sets '{name}' to {j.show(value)}, outside {j.range_text()}"
                 yield at("POSE003", kp, message, "check the value and the joint limits", subject=f"pose:{kp.name}")
+
+
+@rule("POSE010", "known-pose-mismatch", "error", stage="check")
+def known_pose_mismatch(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Computes forward kinematics at each known pose and compares every measured frame
+    position with the model, axis by axis, within the measurement's tolerance.
+    ## Why is this bad?
+    A description that parses can still put the camera 25 m away or turn the elbow about
+    the wrong axis; a measured pose is the one claim that catches both.
+    """
+    from ...poses import findings
+
+    yield from findings(robot)

@@ -152,3 +152,81 @@ def semantic_bad_reference(robot: Robot) -> Iterator[Finding]:
                     "fix the name",
                     subject=f"disable_collisions:{d.link1}:{d.link2}",
                 )
+
+
+@rule("SRDF004", "passive-joint-commanded", "error")
+def passive_joint_commanded(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a joint the SRDF declares passive that has a ros2_control command interface.
+    ## Why is this bad?
+    MoveIt will not plan for a passive joint, yet the hardware accepts commands for it:
+    one of the two descriptions is wrong.
+    """
+    sem, rc = robot.semantic, robot.ros2_control
+    if sem is None or rc is None:
+        return
+    commanded = {cj.name for cj in rc.joints if cj.command}
+    for name in sem.passive_joints:
+        if name in commanded:
+            yield at(
+                "SRDF004",
+                sem,
+                f"passive joint '{name}' has command interfaces",
+                "drop one of the two",
+                subject=f"passive_joint:{name}",
+            )
+
+
+@rule("SRDF005", "srdf-robot-name-mismatch", "warning")
+def srdf_robot_name_mismatch(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Compares the SRDF's robot name with the URDF's.
+    ## Why is this bad?
+    srdfdom only logs "Semantic description is not specified for the same robot".
+    """
+    name = robot.extras.get("srdf_robot_name")
+    if isinstance(name, str) and robot.semantic is not None and name != robot.name:
+        yield at(
+            "SRDF005",
+            robot.semantic,
+            f"SRDF robot name '{name}' differs from the URDF's '{robot.name}'",
+            "use the same name in both",
+            subject="srdf",
+        )
+
+
+@rule("SRDF006", "group-state-joint-outside-group", "warning")
+def group_state_joint_outside_group(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a named state that sets a joint outside its group, or leaves a group joint out.
+    ## Why is this bad?
+    srdfdom does not check it; MoveIt then fills the missing joint with whatever it has.
+    """
+    sem = robot.semantic
+    if sem is None:
+        return
+    names = {g.name for g in sem.groups}
+    virtual = {v.name for v in sem.virtual_joints}
+    for st in sem.states:
+        if st.group not in names:
+            continue
+        members = {j.name for j in robot.group_joints(st.group) if j.type in ("revolute", "continuous", "prismatic")}
+        given = {n for n, _ in st.values}
+        extra = sorted(given - members - virtual)
+        missing = sorted(members - given)
+        if extra:
+            yield at(
+                "SRDF006",
+                st,
+                f"state '{st.name}' sets joints outside group '{st.group}': {', '.join(extra)}",
+                "remove them or add them to the group",
+                subject=f"group_state:{st.name}",
+            )
+        if missing:
+            yield at(
+                "SRDF006",
+                st,
+                f"state '{st.name}' leaves out joints of group '{st.group}': {', '.join(missing)}",
+                "give a value for every joint of the group",
+                subject=f"group_state:{st.name}",
+            )

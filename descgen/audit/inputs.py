@@ -1,0 +1,136 @@
+"""``descgen audit``: read any description (spec, URDF, Xacro; plus SRDF and controllers
+YAML) into the model, resolve its mesh files, and run every rule."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..findings import Finding, InputError, Where
+from ..model import Mesh, Robot, Ros2Control
+from ..readers.controllers import read_controllers_text
+from ..readers.srdf import read_srdf_text
+from ..readers.urdf import read_urdf_text
+from ..readers.xacro_file import expand, find_package
+from .registry import run
+
+
+@dataclass(frozen=True)
+class Options:
+    srdf: Path | None = None
+    controllers: Path | None = None
+    xacro_args: Mapping[str, str] = field(default_factory=dict)
+    package_paths: Sequence[Path] = ()
+
+
+def kind_of(path: Path) -> str:
+    name = path.name.lower()
+    if name.endswith((".yaml", ".yml")):
+        return "spec"
+    if name.endswith(".xacro"):
+        return "xacro"
+    if name.endswith(".urdf"):
+        return "urdf"
+    try:
+        head = path.read_bytes()[:4096]
+    except OSError:
+        return "urdf"
+    return "xacro" if b"xmlns:xacro" in head else "urdf"
+
+
+def _package_root(start: Path) -> Path:
+    for folder in (start, *start.parents):
+        if (folder / "package.xml").is_file():
+            return folder
+    return start
+
+
+def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) -> dict[str, str]:
+    """ok | missing | escapes | unresolved, for every mesh filename."""
+    out: dict[str, str] = {}
+    base = description.resolve().parent
+    for lk in robot.links:
+        for shape in lk.shapes():
+            g = shape.geometry
+            if not isinstance(g, Mesh) or g.filename in out:
+                continue
+            name = g.filename
+            if name.startswith("package://"):
+                pkg, _, rest = name[len("package://") :].partition("/")
+                root = find_package(pkg, [*package_paths, base.parent, base])
+                if root is None:
+                    out[name] = "unresolved"
+                    continue
+                target = (root / rest).resolve()
+                root = root.resolve()
+            elif name.startswith("file://") or name.startswith("/"):
+                out[name] = "escapes"
+                continue
+            else:
+                root = _package_root(base).resolve()
+                target = (base / name).resolve()
+            if not target.is_relative_to(root):
+                out[name] = "escapes"
+            else:
+                out[name] = "ok" if target.is_file() else "missing"
+    return out
+
+
+def load_description(path: Path, options: Options = Options()) -> tuple[Robot, list[Finding]]:
+    """The model of one description and what its readers reported. InputError when unusable."""
+    shown = str(path)
+    if not path.exists():
+        raise InputError([Finding("READ001", "error", "file not found", "check the path", "file", Where(shown))])
+    kind = kind_of(path)
+    found: list[Finding] = []
+    if kind == "spec":
+        from ..spec import load_spec
+
+        robot = load_spec(path, shown, rules=False).robot
+    else:
+        data = expand(path, shown, options.xacro_args, options.package_paths) if kind == "xacro" else path.read_bytes()
+        display = f"{shown} (expanded)" if kind == "xacro" else shown
+        robot, found = read_urdf_text(data, display)
+    extras = dict(robot.extras)
+    if options.srdf is not None:
+        semantic, srdf_name, more = read_srdf_text(_read(options.srdf), str(options.srdf))
+        found += more
+        robot = dataclasses.replace(robot, semantic=semantic)
+        extras["srdf_robot_name"] = srdf_name
+    if options.controllers is not None:
+        controllers, rate, more = read_controllers_text(
+            _read(options.controllers).decode("utf-8", "replace"), str(options.controllers)
+        )
+        found += more
+        rc = robot.ros2_control or Ros2Control("", where=Where(str(options.controllers)))
+        robot = dataclasses.replace(
+            robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
+        )
+    extras["mesh_status"] = mesh_status(robot, path, options.package_paths)
+    return dataclasses.replace(robot, extras=extras), found
+
+
+def _read(path: Path) -> bytes:
+    try:
+        return path.read_bytes()
+    except OSError as exc:
+        raise InputError(
+            [
+                Finding(
+                    "READ001",
+                    "error",
+                    f"cannot read the file: {exc.strerror}",
+                    "check the path",
+                    "file",
+                    Where(str(path)),
+                )
+            ]
+        ) from None
+
+
+def audit(path: Path, options: Options = Options()) -> list[Finding]:
+    """Every finding for one description: what its readers reported, then every rule."""
+    robot, found = load_description(path, options)
+    return found + run(robot)

@@ -1,0 +1,136 @@
+"""NAME (conventions): REP 105 frames and REP 103 optical frames."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+import numpy as np
+
+from ...findings import Finding
+from ...model import Robot
+from ...transforms import rpy_matrix
+from ..registry import at, rule
+
+# body (x forward, y left, z up) -> optical (z forward, x right, y down): columns are the
+# optical axes in body coordinates (reference/conventions.md)
+REP103 = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
+def is_mobile_base(robot: Robot) -> bool:
+    rc = robot.ros2_control
+    if rc is not None and any(c.type.startswith("diff_drive_controller/") for c in rc.controllers):
+        return True
+    wheels = [j for j in robot.joints if j.type == "continuous" and "wheel" in j.name.lower()]
+    return len(wheels) >= 2
+
+
+@rule("NAME010", "no-base-link", "warning")
+def no_base_link(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a robot without a `base_link` frame.
+    ## Why is this bad?
+    REP 105 names the frame rigidly attached to the base `base_link`; navigation,
+    odometry and most tools look it up by that name.
+    """
+    if robot.links and robot.link("base_link") is None:
+        yield at(
+            "NAME010",
+            robot,
+            "no link named 'base_link' (REP 105)",
+            "name the base's rigid frame base_link",
+            subject="robot",
+        )
+
+
+@rule("NAME011", "mobile-base-without-footprint", "info")
+def mobile_base_without_footprint(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a wheeled base (diff-drive controller or two wheel joints) without `base_footprint`.
+    ## Why is this bad?
+    Common practice for wheeled robots is `base_footprint` on the floor under `base_link`;
+    2D navigation stacks default to it. (A convention, not a REP rule.)
+    """
+    if is_mobile_base(robot) and robot.link("base_footprint") is None:
+        yield at(
+            "NAME011",
+            robot,
+            "wheeled base without a 'base_footprint' frame",
+            "add base_footprint on the floor under base_link",
+            subject="robot",
+        )
+
+
+def _optical_links(robot: Robot) -> list[str]:
+    return [lk.name for lk in robot.links if "optical" in lk.name.lower()]
+
+
+@rule("NAME012", "camera-without-optical-frame", "warning")
+def camera_without_optical_frame(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a camera frame (a link named like `*camera*`) with no `*optical*` frame below it.
+    ## Why is this bad?
+    Images are expressed in the optical frame (z forward, x right, y down, REP 103);
+    without it, image geometry ends up in the body frame, rotated 90 degrees twice.
+    """
+    optical = set(_optical_links(robot))
+    for lk in robot.links:
+        name = lk.name.lower()
+        if "camera" not in name or "optical" in name:
+            continue
+        parent = robot.parent_joint(lk.name)
+        if parent is not None and parent.parent and "camera" in parent.parent.lower():
+            continue  # a sub-frame of a camera already considered
+        below = _descendants(robot, lk.name)
+        if not below & optical:
+            yield at(
+                "NAME012",
+                lk,
+                f"camera frame '{lk.name}' has no optical frame below it",
+                f"add {lk.name.removesuffix('_link')}_optical_frame with rpy (-pi/2, 0, -pi/2)",
+            )
+
+
+def _descendants(robot: Robot, link: str) -> set[str]:
+    out: set[str] = set()
+    todo = [link]
+    while todo:
+        for j in robot.child_joints(todo.pop()):
+            if j.child and j.child not in out:
+                out.add(j.child)
+                todo.append(j.child)
+    return out
+
+
+@rule("NAME013", "optical-frame-not-rotated", "error")
+def optical_frame_not_rotated(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Checks that each `*optical*` frame is turned from its parent body frame by the REP 103
+    rotation (rpy -pi/2, 0, -pi/2: z forward, x right, y down).
+    ## Why is this bad?
+    An optical frame without that rotation makes every detection, point cloud and
+    calibration land 90 degrees off, with no error anywhere.
+    """
+    for name in _optical_links(robot):
+        j = robot.parent_joint(name)
+        if j is None or j.type != "fixed" or (j.parent and "optical" in j.parent.lower()):
+            continue
+        r = rpy_matrix(j.origin.rpy)
+        if np.allclose(r, REP103, atol=1e-3):
+            continue
+        if np.allclose(r, np.eye(3), atol=1e-6):
+            yield at(
+                "NAME013",
+                j,
+                f"optical frame '{name}' is not rotated from '{j.parent}'",
+                "set the joint's rpy to (-pi/2, 0, -pi/2) (REP 103)",
+            )
+        else:
+            angle = math.degrees(math.acos(max(-1.0, min(1.0, (np.trace(REP103.T @ r) - 1) / 2))))
+            yield at(
+                "NAME013",
+                j,
+                f"optical frame '{name}' is {angle:.1f} deg away from the REP 103 rotation",
+                "if the parent is a body frame (x forward), use rpy (-pi/2, 0, -pi/2)",
+                severity="warning",
+            )

@@ -1,0 +1,105 @@
+"""GEOM: visual and collision geometry, and the mesh files they name."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ... import inertia
+from ...findings import Finding
+from ...model import Robot
+from ..registry import at, rule
+from .inertia import _moving_links
+
+
+@rule("GEOM001", "moving-link-without-collision", "warning")
+def moving_link_without_collision(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a link that a joint moves, that has visual geometry but no collision geometry.
+    ## Why is this bad?
+    Planners and simulators see through it: the arm can be planned straight through the
+    part you can see.
+    """
+    moving = _moving_links(robot)
+    for lk in robot.links:
+        if lk.name in moving and lk.visuals and not lk.collisions:
+            yield at(
+                "GEOM001",
+                lk,
+                f"moving link '{lk.name}' has visual but no collision geometry",
+                "add a collision primitive (a box or cylinder around the visual is enough)",
+            )
+
+
+@rule("GEOM002", "collision-visual-size-mismatch", "warning")
+def collision_visual_size_mismatch(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Compares the volume of a link's collision primitives with its visual primitives and
+    flags a ratio beyond 10 either way.
+    ## Why is this bad?
+    A collision shape ten times too big blocks valid motions; ten times too small lets
+    real collisions through. Usually one of them is in the wrong unit.
+    """
+    for lk in robot.links:
+        if not lk.visuals or not lk.collisions:
+            continue
+        vv = [inertia.volume(v.geometry) if v.geometry else None for v in lk.visuals]
+        cv = [inertia.volume(c.geometry) if c.geometry else None for c in lk.collisions]
+        if any(x is None for x in vv + cv):
+            continue
+        v, c = sum(x for x in vv if x), sum(x for x in cv if x)
+        if v > 0 and c > 0 and not 0.1 <= c / v <= 10:
+            yield at(
+                "GEOM002",
+                lk,
+                f"link '{lk.name}' collision volume is {c / v:.3g} times its visual volume",
+                "make the collision geometry match what you see",
+            )
+
+
+def _mesh_status(robot: Robot) -> dict[str, str]:
+    status = robot.extras.get("mesh_status")
+    return status if isinstance(status, dict) else {}
+
+
+@rule("GEOM003", "mesh-file-missing", "error")
+def mesh_file_missing(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a mesh whose file does not exist (resolved against the description's folder and
+    `--package-path` for `package://`).
+    ## Why is this bad?
+    RViz shows nothing and collision checking silently loses the part.
+    """
+    status = _mesh_status(robot)
+    for lk in robot.links:
+        for shape in lk.shapes():
+            name = getattr(shape.geometry, "filename", None)
+            if name and status.get(name) == "missing":
+                yield at(
+                    "GEOM003",
+                    shape,
+                    f"link '{lk.name}' mesh '{name}' does not exist",
+                    "fix the path or add the file",
+                    subject=lk.subject,
+                )
+
+
+@rule("GEOM004", "mesh-escapes-package", "error")
+def mesh_escapes_package(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a mesh path that leaves its package folder (`..` past the package root, or an
+    absolute path).
+    ## Why is this bad?
+    It works on the author's machine only: installed packages cannot reach it.
+    """
+    status = _mesh_status(robot)
+    for lk in robot.links:
+        for shape in lk.shapes():
+            name = getattr(shape.geometry, "filename", None)
+            if name and status.get(name) == "escapes":
+                yield at(
+                    "GEOM004",
+                    shape,
+                    f"link '{lk.name}' mesh '{name}' points outside its package",
+                    "use package://<pkg>/<path inside the package>",
+                    subject=lk.subject,
+                )

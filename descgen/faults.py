@@ -1,0 +1,373 @@
+"""Planted faults: copy a robot, plant one known mistake, audit the copy, and report
+whether a finding that the clean original did not have caught it.
+
+Faults are planted in the model, so the same catalogue works for specs, URDFs and Xacros.
+A description that lacks what a fault needs (no ros2_control block, no optical frame)
+gets the minimum added, and the report says so.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from .audit import run
+from .findings import Finding
+from .model import (
+    Box,
+    ControlJoint,
+    Controller,
+    Cylinder,
+    Geometry,
+    Inertia,
+    Interface,
+    Joint,
+    Link,
+    Mesh,
+    Pose,
+    Robot,
+    Ros2Control,
+    Sphere,
+)
+
+Planted = tuple[Robot, str] | None
+
+
+@dataclass(frozen=True)
+class Fault:
+    name: str
+    description: str
+    expects: tuple[str, ...]
+    plant: Callable[[Robot], Planted]
+
+
+@dataclass(frozen=True)
+class Result:
+    fault: Fault
+    planted: str  # what was changed, or why nothing could be
+    caught: bool
+    by: Finding | None = None
+    applicable: bool = True
+
+
+def _key(f: Finding) -> tuple[str, str, str]:
+    return (f.code, f.subject, f.message)
+
+
+def _swap_joint(robot: Robot, old: Joint, new: Joint) -> Robot:
+    return replace(robot, joints=tuple(new if j is old else j for j in robot.joints))
+
+
+def _swap_link(robot: Robot, old: Link, new: Link) -> Robot:
+    return replace(robot, links=tuple(new if lk is old else lk for lk in robot.links))
+
+
+def _one_dof(robot: Robot, types: tuple[str, ...] = ("revolute", "prismatic")) -> list[Joint]:
+    return [j for j in robot.joints if j.type in types]
+
+
+def _moving_links(robot: Robot) -> list[Link]:
+    from .audit.rules.inertia import _moving_links as moving
+
+    names = moving(robot)
+    return [lk for lk in robot.links if lk.name in names]
+
+
+def origin_x1000(robot: Robot) -> Planted:
+    joints = [j for j in robot.joints if any(j.origin.xyz)]
+    if not joints:
+        return None
+    j = max(joints, key=lambda x: math.hypot(*x.origin.xyz))
+    x, y, z = j.origin.xyz
+    xyz = (x * 1000, y * 1000, z * 1000)
+    return _swap_joint(robot, j, replace(j, origin=replace(j.origin, xyz=xyz))), f"joint {j.name} origin ×1000"
+
+
+def _scaled(g: Geometry | None, k: float) -> Geometry | None:
+    if isinstance(g, Box):
+        return Box((g.size[0] * k, g.size[1] * k, g.size[2] * k))
+    if isinstance(g, Cylinder):
+        return Cylinder(g.radius * k, g.length * k)
+    if isinstance(g, Sphere):
+        return Sphere(g.radius * k)
+    if isinstance(g, Mesh):
+        return Mesh(g.filename, (g.scale[0] * k, g.scale[1] * k, g.scale[2] * k))
+    return g
+
+
+def geometry_x1000(robot: Robot) -> Planted:
+    from .audit.rules.scale import dims
+
+    candidates = [lk for lk in robot.links if lk.shapes()]
+    if not candidates:
+        return None
+    link = max(candidates, key=lambda lk: max((d for s in lk.shapes() for d in dims(s.geometry)), default=0.0))
+    new = replace(
+        link,
+        visuals=tuple(replace(v, geometry=_scaled(v.geometry, 1000)) for v in link.visuals),
+        collisions=tuple(replace(c, geometry=_scaled(c.geometry, 1000)) for c in link.collisions),
+    )
+    return _swap_link(robot, link, new), f"link {link.name} geometry ×1000"
+
+
+def _heaviest(robot: Robot, moving_only: bool = True) -> Link | None:
+    pool = _moving_links(robot) if moving_only else list(robot.links)
+    weighed = [lk for lk in pool if lk.inertial and lk.inertial.mass and lk.inertial.mass > 0]
+    return max(weighed, key=lambda lk: lk.inertial.mass or 0.0) if weighed else None  # type: ignore[union-attr]
+
+
+def mass_x1000(robot: Robot) -> Planted:
+    link = _heaviest(robot) or _heaviest(robot, moving_only=False)
+    if link is None or link.inertial is None or link.inertial.mass is None:
+        return None
+    new = replace(link, inertial=replace(link.inertial, mass=link.inertial.mass * 1000))
+    return _swap_link(robot, link, new), f"link {link.name} mass ×1000"
+
+
+def _perpendicular(axis: tuple[float, float, float]) -> tuple[float, float, float]:
+    basis = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    return min(basis, key=lambda b: abs(sum(x * y for x, y in zip(axis, b, strict=True))))
+
+
+def wrong_axis(robot: Robot) -> Planted:
+    from .audit.rules.joints import mirror_name
+
+    moving = [j for j in robot.joints if j.type in ("revolute", "continuous", "prismatic") and j.axis]
+    posed = {name for kp in robot.known_poses for name, v in kp.joints if v != 0}
+    mirrored = [j for j in moving if (m := mirror_name(j.name)) and robot.joint(m) is not None]
+    candidates = [j for j in moving if j.name in posed] + mirrored + moving
+    if not candidates:
+        return None
+    j = candidates[0]
+    assert j.axis is not None
+    axis = _perpendicular(j.axis)
+    return _swap_joint(robot, j, replace(j, axis=axis)), f"joint {j.name} axis {list(j.axis)} -> {list(axis)}"
+
+
+def zero_axis(robot: Robot) -> Planted:
+    joints = _one_dof(robot, ("revolute", "continuous", "prismatic"))
+    if not joints:
+        return None
+    j = joints[0]
+    return _swap_joint(robot, j, replace(j, axis=(0.0, 0.0, 0.0))), f"joint {j.name} axis (0, 0, 0)"
+
+
+def limits_swapped(robot: Robot) -> Planted:
+    for j in _one_dof(robot):
+        lm = j.limit
+        if lm and lm.lower is not None and lm.upper is not None and lm.lower < lm.upper:
+            new = replace(j, limit=replace(lm, lower=lm.upper, upper=lm.lower))
+            return _swap_joint(robot, j, new), f"joint {j.name} lower and upper swapped"
+    return None
+
+
+def missing_limits(robot: Robot) -> Planted:
+    joints = [j for j in _one_dof(robot) if j.limit is not None]
+    if not joints:
+        return None
+    j = joints[0]
+    return _swap_joint(robot, j, replace(j, limit=None)), f"joint {j.name} <limit> removed"
+
+
+def negative_mass(robot: Robot) -> Planted:
+    link = _heaviest(robot) or _heaviest(robot, moving_only=False)
+    if link is None or link.inertial is None or link.inertial.mass is None:
+        return None
+    new = replace(link, inertial=replace(link.inertial, mass=-link.inertial.mass))
+    return _swap_link(robot, link, new), f"link {link.name} mass negated"
+
+
+def non_physical_inertia(robot: Robot) -> Planted:
+    for link in _moving_links(robot) + list(robot.links):
+        i = link.inertial
+        if i is None or i.inertia is None or not i.mass or i.mass <= 0:
+            continue
+        t = i.inertia
+        if t.ixx <= 0 or t.iyy <= 0:
+            continue
+        bad = Inertia(t.ixx, 0.0, 0.0, t.iyy, 0.0, 3 * (t.ixx + t.iyy))
+        return _swap_link(robot, link, replace(link, inertial=replace(i, inertia=bad))), (
+            f"link {link.name} izz = 3 (ixx + iyy): breaks the triangle inequality"
+        )
+    return None
+
+
+def duplicate_name(robot: Robot) -> Planted:
+    if len(robot.links) < 2:
+        return None
+    first, last = robot.links[0], robot.links[-1]
+    return _swap_link(robot, last, replace(last, name=first.name)), f"link {last.name} renamed to {first.name}"
+
+
+def second_parent(robot: Robot) -> Planted:
+    root = robot.root()
+    targets = [j.child for j in robot.joints if j.child and j.parent != root]
+    if root is None or not targets:
+        return None
+    extra = Joint("planted_second_parent_joint", "fixed", root, targets[-1], axis=None)
+    return replace(robot, joints=(*robot.joints, extra)), f"added a second parent joint to {targets[-1]}"
+
+
+def _descendants(robot: Robot, link: str) -> list[str]:
+    out, todo = [], [link]
+    while todo:
+        for j in robot.child_joints(todo.pop()):
+            if j.child and j.child not in out:
+                out.append(j.child)
+                todo.append(j.child)
+    return out
+
+
+def cycle(robot: Robot) -> Planted:
+    for j in robot.joints:
+        below = _descendants(robot, j.child) if j.child else []
+        if below:
+            return _swap_joint(
+                robot, j, replace(j, parent=below[-1])
+            ), f"joint {j.name} parent -> its descendant {below[-1]}"
+    return None
+
+
+def dangling_joint(robot: Robot) -> Planted:
+    if not robot.joints:
+        return None
+    j = robot.joints[-1]
+    return _swap_joint(robot, j, replace(j, child="planted_missing_link")), f"joint {j.name} child -> a missing link"
+
+
+def second_root(robot: Robot) -> Planted:
+    for j in robot.joints:
+        if j.child and _descendants(robot, j.child):
+            return replace(robot, joints=tuple(x for x in robot.joints if x is not j)), (
+                f"joint {j.name} removed: {j.child} starts a second tree"
+            )
+    if robot.joints:
+        j = robot.joints[-1]
+        return replace(robot, joints=robot.joints[:-1]), f"joint {j.name} removed: {j.child} becomes a root"
+    return None
+
+
+def missing_optical_rotation(robot: Robot) -> Planted:
+    for j in robot.joints:
+        if j.child and "optical" in j.child.lower() and j.type == "fixed" and any(j.origin.rpy):
+            return _swap_joint(robot, j, replace(j, origin=replace(j.origin, rpy=(0.0, 0.0, 0.0)))), (
+                f"joint {j.name} rotation removed"
+            )
+    root = robot.root()
+    if root is None:
+        return None
+    links = (Link("planted_camera_link"), Link("planted_camera_optical_frame"))
+    joints = (
+        Joint("planted_camera_joint", "fixed", root, "planted_camera_link", Pose((0.1, 0.0, 0.1)), None),
+        Joint(
+            "planted_camera_optical_joint", "fixed", "planted_camera_link", "planted_camera_optical_frame", Pose(), None
+        ),
+    )
+    return replace(robot, links=robot.links + links, joints=robot.joints + joints), (
+        "added a camera whose optical frame lacks the REP 103 rotation (the description had none)"
+    )
+
+
+def missing_collision(robot: Robot) -> Planted:
+    for link in _moving_links(robot):
+        if link.visuals and link.collisions:
+            return _swap_link(robot, link, replace(link, collisions=())), f"link {link.name} collision removed"
+    return None
+
+
+def _with_control(robot: Robot) -> Ros2Control:
+    if robot.ros2_control is not None:
+        return robot.ros2_control
+    return Ros2Control("planted_system", update_rate=100.0)
+
+
+def controller_on_missing_joint(robot: Robot) -> Planted:
+    rc = _with_control(robot)
+    joints = [j.name for j in _one_dof(robot, ("revolute", "prismatic", "continuous"))][:2]
+    ctrl = Controller(
+        "planted_controller",
+        "forward_command_controller/ForwardCommandController",
+        (("joints", (*joints, "planted_missing_joint")), ("interface_name", "position")),
+    )
+    added = "" if robot.ros2_control else " (added a ros2_control block)"
+    return replace(robot, ros2_control=replace(rc, controllers=(*rc.controllers, ctrl))), (
+        f"controller commanding missing joint planted_missing_joint{added}"
+    )
+
+
+def command_beyond_limit(robot: Robot) -> Planted:
+    rc = _with_control(robot)
+    for j in _one_dof(robot):
+        lm = j.limit
+        if lm is None or lm.lower is None or lm.upper is None:
+            continue
+        iface = Interface("position", lm.lower, lm.upper + max(0.1, abs(lm.upper) * 0.1))
+        existing = next((cj for cj in rc.joints if cj.name == j.name), None)
+        if existing is not None:
+            others = tuple(i for i in existing.command if i.name != "position")
+            new_joint = replace(existing, command=(iface, *others))
+            joints = tuple(new_joint if cj is existing else cj for cj in rc.joints)
+        else:
+            joints = (*rc.joints, ControlJoint(j.name, (iface,), (Interface("position"),)))
+        added = "" if robot.ros2_control else " (added a ros2_control block)"
+        return replace(robot, ros2_control=replace(rc, joints=joints)), (
+            f"'{j.name}/position' command max {iface.max:.6g} beyond upper limit {lm.upper:.6g}{added}"
+        )
+    return None
+
+
+CATALOGUE: tuple[Fault, ...] = (
+    Fault("origin-x1000", "a joint origin written in millimetres as metres", ("UNIT011", "POSE010"), origin_x1000),
+    Fault(
+        "geometry-x1000",
+        "a geometry written in millimetres as metres",
+        ("UNIT012", "UNIT010", "UNIT013"),
+        geometry_x1000,
+    ),
+    Fault("mass-x1000", "a mass written in grams as kilograms", ("UNIT010", "INER006", "JOINT008"), mass_x1000),
+    Fault("wrong-axis", "a joint turning about the wrong axis", ("POSE010", "JOINT009", "CTRL006"), wrong_axis),
+    Fault("zero-axis", "an <axis/> without xyz (0 0 0)", ("JOINT001",), zero_axis),
+    Fault("limits-swapped", "lower and upper limits swapped", ("JOINT004",), limits_swapped),
+    Fault("missing-limits", "a revolute/prismatic joint without <limit>", ("JOINT003",), missing_limits),
+    Fault("negative-mass", "a negative mass", ("INER001",), negative_mass),
+    Fault("non-physical-inertia", "an inertia tensor no body can have", ("INER004", "INER003"), non_physical_inertia),
+    Fault("duplicate-name", "two links with one name", ("NAME001",), duplicate_name),
+    Fault("second-parent", "a link with two parent joints", ("TOPO002",), second_parent),
+    Fault("cycle", "joints forming a loop", ("TOPO003", "TOPO001"), cycle),
+    Fault("dangling-joint", "a joint naming a missing link", ("TOPO004",), dangling_joint),
+    Fault("second-root", "a second tree", ("TOPO001",), second_root),
+    Fault(
+        "missing-optical-rotation",
+        "an optical frame without the REP 103 rotation",
+        ("NAME013",),
+        missing_optical_rotation,
+    ),
+    Fault("missing-collision", "a moving link with visual but no collision", ("GEOM001",), missing_collision),
+    Fault(
+        "controller-on-missing-joint",
+        "a controller commanding a joint that does not exist",
+        ("CTRL009", "CTRL002"),
+        controller_on_missing_joint,
+    ),
+    Fault("command-beyond-limit", "a command limit beyond the URDF limit", ("CTRL008",), command_beyond_limit),
+)
+
+
+def plant_all(robot: Robot, catalogue: tuple[Fault, ...] = CATALOGUE) -> list[Result]:
+    """Plant each fault in a copy, audit it, and report what caught it."""
+    baseline = {_key(f) for f in run(robot)}
+    results = []
+    for fault in catalogue:
+        planted = fault.plant(robot)
+        if planted is None:
+            results.append(
+                Result(fault, "not applicable: the description has nothing to plant it in", False, applicable=False)
+            )
+            continue
+        copy, what = planted
+        new = [f for f in run(copy) if _key(f) not in baseline]
+        expected = [f for f in new if f.code in fault.expects]
+        by = (expected or new)[0] if (expected or new) else None
+        results.append(Result(fault, what, by is not None, by))
+    return results

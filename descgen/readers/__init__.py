@@ -1,0 +1,1 @@
+"""Readers of descriptions descgen did not write: URDF, Xacro, SRDF, controllers YAML."""

@@ -1,0 +1,336 @@
+"""A tolerant URDF reader: lxml with line numbers, into the same SI model specs produce.
+
+It loads broken descriptions (duplicate names, two parents, cycles, missing limits,
+dangling references, bad numbers) so the audit can name the defect; what it cannot
+read becomes a finding (READ…), never an exception. URDF is SI already (REP 103), so no
+unit is converted here. Defaults follow urdfdom (reference/urdf.md): a missing
+``<origin>`` is identity, a missing ``<axis>`` is (1, 0, 0), and ``<axis/>`` without
+``xyz`` is (0, 0, 0).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from lxml import etree
+
+from .. import model as m
+from ..findings import Finding, InputError, Where
+from ..xmlcompare import line_of
+
+MAX_BYTES = 50 * 1024 * 1024
+
+
+def safe_parser() -> etree.XMLParser:
+    """No DTD loading, no entity expansion, no network, no huge trees."""
+    return etree.XMLParser(
+        resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False, remove_comments=False
+    )
+
+
+def parse_xml(data: bytes, file: str) -> etree._Element:
+    """Parse XML safely; a malformed or DTD-carrying file is an input error at the parser's line and column."""
+    if len(data) > MAX_BYTES:
+        raise InputError(
+            [
+                Finding(
+                    "READ001",
+                    "error",
+                    f"file is {len(data) / 1e6:.0f} MB; too large for a description",
+                    "is this the right file?",
+                    "file",
+                    Where(file),
+                )
+            ]
+        )
+    try:
+        root = etree.fromstring(data, safe_parser())
+    except etree.XMLSyntaxError as exc:
+        line, col = exc.position if exc.position else (0, 0)
+        raise InputError(
+            [
+                Finding(
+                    "READ001",
+                    "error",
+                    f"malformed XML: {exc.msg}",
+                    "fix the XML at this position",
+                    "file",
+                    Where(file, line, col + 1 if col else 0),
+                )
+            ]
+        ) from None
+    doc = root.getroottree()
+    if doc.docinfo.internalDTD is not None or doc.docinfo.doctype:
+        raise InputError(
+            [
+                Finding(
+                    "READ002",
+                    "error",
+                    "the file declares a DTD (entities could expand or load files)",
+                    "remove the <!DOCTYPE ...> declaration",
+                    "file",
+                    Where(file, 1),
+                )
+            ]
+        )
+    return root
+
+
+class _Reader:
+    def __init__(self, file: str) -> None:
+        self.file = file
+        self.findings: list[Finding] = []
+
+    def where(self, e: etree._Element) -> Where:
+        return Where(self.file, line_of(e))
+
+    def problem(self, e: etree._Element, message: str, hint: str, subject: str) -> None:
+        self.findings.append(Finding("READ010", "error", message, hint, subject, self.where(e)))
+
+    def floats(
+        self, e: etree._Element | None, attr: str, n: int, default: tuple[float, ...] | None, subject: str
+    ) -> tuple[float, ...] | None:
+        if e is None:
+            return default
+        raw = e.get(attr)
+        if raw is None:
+            return default
+        try:
+            values = tuple(float(t) for t in raw.split())
+        except ValueError:
+            self.problem(e, f"{e.tag} {attr}='{raw}' is not {n} number(s)", "write plain decimal numbers", subject)
+            return default
+        if len(values) != n:
+            self.problem(e, f"{e.tag} {attr}='{raw}' has {len(values)} numbers, not {n}", f"write {n} numbers", subject)
+            return default
+        return values
+
+    def number(self, e: etree._Element | None, attr: str, subject: str) -> float | None:
+        v = self.floats(e, attr, 1, None, subject)
+        return None if v is None else v[0]
+
+    def pose(self, e: etree._Element | None, subject: str) -> m.Pose:
+        if e is None:
+            return m.Pose()
+        xyz = self.floats(e, "xyz", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
+        rpy = self.floats(e, "rpy", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
+        return m.Pose((xyz[0], xyz[1], xyz[2]), (rpy[0], rpy[1], rpy[2]))
+
+    def geometry(self, e: etree._Element | None, subject: str) -> m.Geometry | None:
+        if e is None:
+            return None
+        shape = next((c for c in e if isinstance(c.tag, str)), None)
+        if shape is None:
+            self.problem(e, "empty <geometry>", "add a box, cylinder, sphere or mesh", subject)
+            return None
+        if shape.tag == "box":
+            size = self.floats(shape, "size", 3, None, subject)
+            return m.Box((size[0], size[1], size[2])) if size else None
+        if shape.tag == "cylinder":
+            r, length = self.number(shape, "radius", subject), self.number(shape, "length", subject)
+            return m.Cylinder(r, length) if r is not None and length is not None else None
+        if shape.tag == "sphere":
+            r = self.number(shape, "radius", subject)
+            return m.Sphere(r) if r is not None else None
+        if shape.tag == "mesh":
+            scale = self.floats(shape, "scale", 3, (1.0, 1.0, 1.0), subject) or (1.0, 1.0, 1.0)
+            return m.Mesh(shape.get("filename", ""), (scale[0], scale[1], scale[2]))
+        self.problem(shape, f"unknown geometry <{shape.tag}>", "use box, cylinder, sphere or mesh", subject)
+        return None
+
+    def link(self, e: etree._Element) -> m.Link:
+        name = e.get("name", "")
+        subject = f"link:{name}"
+        visuals = tuple(
+            m.Visual(
+                self.geometry(v.find("geometry"), subject),
+                self.pose(v.find("origin"), subject),
+                v.get("name"),
+                _material_name(v),
+                self.where(v),
+            )
+            for v in e.findall("visual")
+        )
+        collisions = tuple(
+            m.Collision(
+                self.geometry(c.find("geometry"), subject),
+                self.pose(c.find("origin"), subject),
+                c.get("name"),
+                self.where(c),
+            )
+            for c in e.findall("collision")
+        )
+        inertial = None
+        ie = e.find("inertial")
+        if ie is not None:
+            mass = self.number(ie.find("mass"), "value", subject)
+            te = ie.find("inertia")
+            tensor = None
+            if te is not None:
+                vals = [self.number(te, k, subject) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
+                if all(v is not None for v in vals):
+                    tensor = m.Inertia(*(float(v) for v in vals if v is not None))
+            inertial = m.Inertial(mass, self.pose(ie.find("origin"), subject), tensor, self.where(ie))
+        return m.Link(name, visuals, collisions, inertial, self.where(e))
+
+    def joint(self, e: etree._Element) -> m.Joint:
+        name = e.get("name", "")
+        subject = f"joint:{name}"
+        jtype = e.get("type", "")
+        parent = e.find("parent")
+        child = e.find("child")
+        axis_e = e.find("axis")
+        axis: m.Vec3 | None
+        if jtype in ("fixed", "floating"):
+            axis = None
+        elif axis_e is None:
+            axis = (1.0, 0.0, 0.0)
+        else:
+            a = self.floats(axis_e, "xyz", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
+            axis = (a[0], a[1], a[2])
+        limit = None
+        le = e.find("limit")
+        if le is not None:
+            limit = m.Limit(
+                self.number(le, "lower", subject),
+                self.number(le, "upper", subject),
+                self.number(le, "effort", subject),
+                self.number(le, "velocity", subject),
+                self.where(le),
+            )
+        dynamics = None
+        de = e.find("dynamics")
+        if de is not None:
+            dynamics = m.Dynamics(
+                self.number(de, "damping", subject) or 0.0, self.number(de, "friction", subject) or 0.0
+            )
+        mimic = None
+        me = e.find("mimic")
+        if me is not None:
+            mult = self.number(me, "multiplier", subject)
+            off = self.number(me, "offset", subject)
+            mimic = m.Mimic(me.get("joint", ""), 1.0 if mult is None else mult, off or 0.0, self.where(me))
+        safety = None
+        se = e.find("safety_controller")
+        if se is not None:
+            safety = m.SafetyController(
+                self.number(se, "k_velocity", subject) or 0.0,
+                self.number(se, "k_position", subject) or 0.0,
+                self.number(se, "soft_lower_limit", subject) or 0.0,
+                self.number(se, "soft_upper_limit", subject) or 0.0,
+            )
+        if jtype not in m.JOINT_TYPES:
+            self.problem(
+                e, f"joint '{name}' has unknown type '{jtype}'", f"use one of {', '.join(m.JOINT_TYPES)}", subject
+            )
+        return m.Joint(
+            name,
+            jtype,
+            parent.get("link") if parent is not None else None,
+            child.get("link") if child is not None else None,
+            self.pose(e.find("origin"), subject),
+            axis,
+            limit,
+            dynamics,
+            mimic,
+            safety,
+            self.where(e),
+        )
+
+    def material(self, e: etree._Element) -> m.Material:
+        rgba = self.floats(e.find("color"), "rgba", 4, None, f"material:{e.get('name', '')}")
+        texture = e.find("texture")
+        return m.Material(
+            e.get("name", ""),
+            (rgba[0], rgba[1], rgba[2], rgba[3]) if rgba else None,
+            texture.get("filename") if texture is not None else None,
+            self.where(e),
+        )
+
+    def ros2_control(self, blocks: list[etree._Element]) -> m.Ros2Control | None:
+        if not blocks:
+            return None
+        b = blocks[0]
+        joints = []
+        for je in b.findall("joint"):
+
+            def interfaces(tag: str, je: etree._Element = je) -> tuple[m.Interface, ...]:
+                out = []
+                for ie in je.findall(tag):
+                    params = {p.get("name"): p.text for p in ie.findall("param")}
+
+                    def f(key: str, params: dict[str | None, str | None] = params) -> float | None:
+                        try:
+                            text = params.get(key)
+                            return None if text is None else float(text)
+                        except ValueError:
+                            return None
+
+                    out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value")))
+                return tuple(out)
+
+            joints.append(
+                m.ControlJoint(
+                    je.get("name", ""),
+                    interfaces("command_interface"),
+                    interfaces("state_interface"),
+                    where=self.where(je),
+                )
+            )
+        hw = b.find("hardware")
+        plugin = (hw.findtext("plugin") or "").strip() if hw is not None else ""
+        params = tuple(
+            (p.get("name", ""), (p.text or "").strip()) for p in (hw.findall("param") if hw is not None else [])
+        )
+        return m.Ros2Control(
+            b.get("name", ""), b.get("type", ""), plugin, params, tuple(joints), None, (), self.where(b)
+        )
+
+
+def _material_name(visual: etree._Element) -> str | None:
+    mat = visual.find("material")
+    return None if mat is None else mat.get("name")
+
+
+def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
+    """The model of a URDF document and what could not be read (READ… findings)."""
+    root = parse_xml(data, file)
+    r = _Reader(file)
+    if root.tag != "robot":
+        raise InputError(
+            [
+                Finding(
+                    "READ003",
+                    "error",
+                    f"root element is <{root.tag}>, not <robot>",
+                    "is this a URDF?",
+                    "file",
+                    r.where(root),
+                )
+            ]
+        )
+    robot = m.Robot(
+        root.get("name", ""),
+        tuple(r.link(e) for e in root.findall("link")),
+        tuple(r.joint(e) for e in root.findall("joint")),
+        tuple(r.material(e) for e in root.findall("material")),
+        ros2_control=r.ros2_control(root.findall("ros2_control")),
+        where=r.where(root),
+        source_file=file,
+    )
+    return robot, r.findings
+
+
+def read_urdf(path: Path, display: str | None = None) -> tuple[m.Robot, list[Finding]]:
+    shown = display or str(path)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(
+            [
+                Finding(
+                    "READ001", "error", f"cannot read the file: {exc.strerror}", "check the path", "file", Where(shown)
+                )
+            ]
+        ) from None
+    return read_urdf_text(data, shown)

@@ -1,0 +1,170 @@
+"""The rule catalogue: stable well-formed codes, unique names, documented rules, and the `rules` command."""
+
+from __future__ import annotations
+
+import inspect
+import re
+import subprocess
+import sys
+from collections.abc import Iterable, Iterator
+
+import pytest
+
+from descgen.audit import RULES, iter_rules, registry
+from descgen.findings import SEVERITIES, Finding
+from descgen.model import Robot
+
+from .helpers import ROOT
+
+CODE = re.compile(rf"^(?:{'|'.join(registry.CATEGORIES)})\d{{3}}$")
+ALL = list(iter_rules())
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, timeout=60, cwd=ROOT
+    )
+
+
+def test_there_are_rules() -> None:
+    assert len(ALL) >= 20
+    assert [r.code for r in ALL] == sorted(RULES)
+
+
+@pytest.mark.parametrize("info", ALL, ids=[r.code for r in ALL])
+def test_rule_is_well_formed(info: registry.RuleInfo) -> None:
+    assert CODE.match(info.code), info.code
+    assert RULES[info.code] is info
+    assert re.fullmatch(r"[a-z][a-z0-9]*(-[a-z0-9]+)*", info.name), info.name
+    assert info.severity in SEVERITIES
+    assert callable(info.fn)
+    assert "## What it does" in info.doc and "## Why is this bad?" in info.doc
+    assert info.doc.index("## What it does") < info.doc.index("## Why is this bad?")
+    what = info.doc.split("## What it does", 1)[1].split("## Why is this bad?", 1)[0]
+    why = info.doc.split("## Why is this bad?", 1)[1]
+    assert what.strip() and why.strip(), info.doc
+    assert info.summary and "##" not in info.summary
+
+
+def test_rule_names_are_unique() -> None:
+    names = [r.name for r in ALL]
+    assert len(names) == len(set(names)), sorted(n for n in names if names.count(n) > 1)
+
+
+def test_every_category_prefix_is_upper_case() -> None:
+    assert all(re.fullmatch(r"[A-Z]+", c) for c in registry.CATEGORIES)
+
+
+# --------------------------------------------------------------------------- registering
+
+
+@pytest.fixture
+def clean_rules() -> Iterator[None]:
+    """Whatever a test registers is gone afterwards."""
+    list(iter_rules())  # make sure every rule module is imported before the snapshot
+    saved = dict(RULES)
+    try:
+        yield
+    finally:
+        RULES.clear()
+        RULES.update(saved)
+
+
+def _dummy(robot: Robot) -> Iterable[Finding]:
+    """## What it does
+    Nothing.
+    ## Why is this bad?
+    It is a test.
+    """
+    return []
+
+
+def _undocumented(robot: Robot) -> Iterable[Finding]:
+    """Does something."""
+    return []
+
+
+def _free_code(prefix: str = "TIME") -> str:
+    return next(f"{prefix}{n:03d}" for n in range(999, 0, -1) if f"{prefix}{n:03d}" not in RULES)
+
+
+@pytest.mark.usefixtures("clean_rules")
+def test_registering_a_new_rule_works_and_is_cleaned_up() -> None:
+    code = _free_code()
+    before = len(RULES)
+    registry.rule(code, "test-only-rule", "info")(_dummy)
+    assert RULES[code].name == "test-only-rule"
+    assert len(RULES) == before + 1
+
+
+def test_cleanup_left_no_test_rule() -> None:
+    assert all(r.name != "test-only-rule" for r in iter_rules())
+    assert [r.code for r in iter_rules()] == [r.code for r in ALL]
+
+
+@pytest.mark.usefixtures("clean_rules")
+def test_duplicate_code_is_refused() -> None:
+    before = dict(RULES)
+    with pytest.raises(ValueError, match="duplicate"):
+        registry.rule("JOINT004", "a-brand-new-name", "error")(_dummy)
+    assert before == RULES
+    assert RULES["JOINT004"].name == "limits-out-of-order"
+
+
+@pytest.mark.usefixtures("clean_rules")
+def test_duplicate_name_is_refused() -> None:
+    before = dict(RULES)
+    with pytest.raises(ValueError, match="duplicate"):
+        registry.rule(_free_code(), "limits-out-of-order", "error")(_dummy)
+    assert before == RULES
+
+
+@pytest.mark.usefixtures("clean_rules")
+@pytest.mark.parametrize("code", ["FOO001", "JOINT04", "JOINT0004", "joint004", "JOINT", "004", "XJOINT004", ""])
+def test_bad_code_is_refused(code: str) -> None:
+    before = dict(RULES)
+    with pytest.raises(ValueError, match="category prefix"):
+        registry.rule(code, f"bad-code-{len(code)}", "error")(_dummy)
+    assert before == RULES
+
+
+@pytest.mark.usefixtures("clean_rules")
+def test_undocumented_rule_is_refused() -> None:
+    before = dict(RULES)
+    with pytest.raises(ValueError, match="doc"):
+        registry.rule(_free_code(), "undocumented-rule", "error")(_undocumented)
+    assert before == RULES
+
+
+# --------------------------------------------------------------------------- the `rules` command
+
+
+def test_cli_rules_lists_every_code() -> None:
+    r = run_cli("rules")
+    assert r.returncode == 0, r.stderr
+    listed = [line.split()[0] for line in r.stdout.splitlines() if line.strip()]
+    assert listed == [info.code for info in ALL]
+    for info in ALL:
+        assert info.name in r.stdout
+
+
+def test_cli_rules_code_prints_its_doc() -> None:
+    r = run_cli("rules", "JOINT004")
+    assert r.returncode == 0, r.stderr
+    info = RULES["JOINT004"]
+    first = r.stdout.splitlines()[0]
+    assert first.startswith("JOINT004") and info.name in first and info.severity in first
+    out_lines = [line.strip() for line in r.stdout.splitlines()]
+    for line in inspect.cleandoc(info.doc).splitlines():
+        if line.strip():
+            assert line.strip() in out_lines, line
+    assert "JOINT001" not in r.stdout
+
+
+def test_cli_rules_doc_is_markdown_with_headings_at_line_start() -> None:
+    """The doc is also rule help (SARIF, markdown): an indented '## ...' is a code block, not a heading."""
+    r = run_cli("rules", "JOINT004")
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert "## What it does" in lines, r.stdout
+    assert "## Why is this bad?" in lines, r.stdout
