@@ -10,7 +10,7 @@ def chain_spec(n_links: int, name: str = "chain") -> str:
             f"  - name: link{i}",
             "    visual: [{origin: {xyz: [0, 0, 50 mm]}, geometry: {box: {size: [40 mm, 40 mm, 100 mm]}}}]",
             "    collision: [{origin: {xyz: [0, 0, 50 mm]}, geometry: {box: {size: [40 mm, 40 mm, 100 mm]}}}]",
-            "    inertial: {mass: 500 g, origin: {xyz: [0, 0, 50 mm]}, from: collision}",
+            "    inertial: {mass: 1 g, origin: {xyz: [0, 0, 50 mm]}, from: collision}",
         ]
     lines.append("joints:")
     for i in range(1, n_links):
@@ -22,6 +22,6 @@ def chain_spec(n_links: int, name: str = "chain") -> str:
             f"    child: link{i}",
             "    origin: {xyz: [0, 0, 100 mm], rpy: [0, 0, 15 deg]}",
             f"    axis: {axis}",
-            "    limit: {lower: -90 deg, upper: 90 deg, effort: 10 N*m, velocity: 1 rad/s}",
+            "    limit: {lower: -90 deg, upper: 90 deg, effort: 2000 N*m, velocity: 1 rad/s}",
         ]
     return "\n".join(lines) + "\n"

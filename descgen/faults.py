@@ -336,7 +336,7 @@ CATALOGUE: tuple[Fault, ...] = (
     Fault("second-parent", "a link with two parent joints", ("TOPO002",), second_parent),
     Fault("cycle", "joints forming a loop", ("TOPO003", "TOPO001"), cycle),
     Fault("dangling-joint", "a joint naming a missing link", ("TOPO004",), dangling_joint),
-    Fault("second-root", "a second tree", ("TOPO001",), second_root),
+    Fault("second-root", "a second tree", ("TOPO001", "TOPO005"), second_root),
     Fault(
         "missing-optical-rotation",
         "an optical frame without the REP 103 rotation",

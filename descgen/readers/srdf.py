@@ -29,6 +29,7 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
         )
         for g in root.findall("group")
     )
+    multi_dof = {v.get("name") for v in root.findall("virtual_joint") if v.get("type") in ("floating", "planar")}
     states = []
     for s in root.findall("group_state"):
         values = []
@@ -38,7 +39,7 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
                 numbers = [float(t) for t in raw.split()]
             except ValueError:
                 numbers = []
-            if len(numbers) != 1:
+            if len(numbers) != 1 and j.get("name") not in multi_dof:
                 found.append(
                     Finding(
                         "READ011",

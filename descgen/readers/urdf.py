@@ -43,6 +43,20 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
                 )
             ]
         )
+    if b"<!DOCTYPE" in data[:65536].upper():
+        line = data[: data.upper().index(b"<!DOCTYPE")].count(b"\n") + 1
+        raise InputError(
+            [
+                Finding(
+                    "READ002",
+                    "error",
+                    "the file declares a DTD (entities could expand or read files)",
+                    "remove the <!DOCTYPE ...> declaration; URDF needs none",
+                    "file",
+                    Where(file, line),
+                )
+            ]
+        )
     try:
         root = etree.fromstring(data, safe_parser())
     except etree.XMLSyntaxError as exc:

@@ -24,6 +24,12 @@ def _moving_links(robot: Robot) -> set[str]:
     return moving
 
 
+def own_bodies(robot: Robot) -> set[str]:
+    """Links that are rigid bodies of their own: the child of a joint that moves. A link
+    welded on by a fixed joint is merged into its parent by simulators and by KDL."""
+    return {j.child for j in robot.joints if j.type != "fixed" and j.child}
+
+
 def _carries_geometry(robot: Robot, link: str) -> bool:
     lk = robot.link(link)
     return bool(lk and (lk.visuals or lk.collisions))
@@ -32,11 +38,12 @@ def _carries_geometry(robot: Robot, link: str) -> bool:
 @rule("INER001", "non-positive-mass", "error")
 def non_positive_mass(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Finds a link with an inertial whose mass is missing, zero or negative.
+    Finds a link whose mass is missing or negative, or zero on a link that moves on its own
+    joint or that has an inertia tensor (a massless, tensorless frame is fine).
     ## Why is this bad?
     urdfdom accepts negative mass; physics engines reject it or explode.
     """
-    moving = _moving_links(robot)
+    moving = own_bodies(robot)
     for lk in robot.links:
         if lk.inertial is None:
             continue
@@ -67,23 +74,33 @@ def _weighed(lk: Link) -> bool:
     return i is not None and i.inertia is not None and i.mass is not None and (i.mass > 0 or _has_tensor(lk))
 
 
-def _severity(robot: Robot, lk: Link, moving: set[str]) -> Severity:
-    """Inertia defects break simulation of moving links; a fixed link's is merged into its parent."""
-    return "error" if lk.name in moving else "warning"
+def _severity(robot: Robot, lk: Link, bodies: set[str]) -> Severity:
+    """Inertia defects break simulation of a body that moves on its own joint; a link welded
+    on by a fixed joint is merged into its parent, so there it is a warning."""
+    return "error" if lk.name in bodies else "warning"
 
 
 @rule("INER002", "moving-link-without-mass", "error")
 def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Finds a link with geometry that a moving joint carries but that has no inertial.
+    Finds a link with geometry that a moving joint carries but that has no inertial
+    (an error on a link with its own joint, a warning on one welded to it).
     ## Why is this bad?
     Simulators drop or mis-simulate massless bodies; gravity compensation and the
     static-torque check ignore it.
     """
+    bodies = own_bodies(robot)
     for name in sorted(_moving_links(robot)):
         lk = robot.link(name)
         if lk is not None and lk.inertial is None and _carries_geometry(robot, name):
-            yield at("INER002", lk, f"moving link '{name}' has geometry but no inertial", "add mass and inertia")
+            welded = "" if name in bodies else " (welded to a moving link)"
+            yield at(
+                "INER002",
+                lk,
+                f"moving link '{name}'{welded} has geometry but no inertial",
+                "add mass and inertia",
+                severity=_severity(robot, lk, bodies),
+            )
 
 
 @rule("INER003", "inertia-not-positive-definite", "error")
@@ -93,7 +110,7 @@ def inertia_not_positive_definite(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     A tensor with a zero or negative eigenvalue is not a rigid body; urdfdom accepts it.
     """
-    moving = _moving_links(robot)
+    moving = own_bodies(robot)
     for lk in robot.links:
         if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
@@ -116,7 +133,7 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     No real mass distribution violates it; the numbers were mistyped or mixed units.
     """
-    moving = _moving_links(robot)
+    moving = own_bodies(robot)
     for lk in robot.links:
         if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
@@ -150,7 +167,7 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
     (grams written as kilograms) or the tensor is a placeholder. Simulators then spin
     the link far too easily.
     """
-    moving = _moving_links(robot)
+    moving = own_bodies(robot)
     for lk in robot.links:
         i = lk.inertial
         if i is None or i.inertia is None or i.mass is None or i.mass <= 0:

@@ -177,24 +177,54 @@ def bad_mimic(robot: Robot) -> Iterator[Finding]:
 G = 9.80665
 
 
-def _subtree_mass_moment(robot: Robot, joint_child: str, poses: dict[str, np.ndarray]) -> tuple[float, np.ndarray]:
-    """Total mass below (and including) a link, and the sum of m * centre of mass (root frame)."""
+def _subtree_loads(robot: Robot, poses: dict[str, np.ndarray]) -> dict[str, tuple[float, np.ndarray]]:
+    """For every link: the mass of it and everything below it, and the sum of m * centre of
+    mass (root frame). One pass from the leaves up, so a 1000-link chain stays linear."""
     from ...transforms import pose_matrix
 
-    total, moment = 0.0, np.zeros(3)
-    todo, seen = [joint_child], set()
-    while todo:
-        name = todo.pop()
-        if name in seen or name not in poses:
-            continue
-        seen.add(name)
+    own: dict[str, tuple[float, np.ndarray]] = {}
+    for name, pose in poses.items():
         lk = robot.link(name)
         if lk is not None and lk.inertial is not None and lk.inertial.mass and lk.inertial.mass > 0:
-            com = poses[name] @ pose_matrix(lk.inertial.origin.xyz, lk.inertial.origin.rpy)
-            total += lk.inertial.mass
-            moment += lk.inertial.mass * com[:3, 3]
-        todo += [j.child for j in robot.child_joints(name) if j.child]
-    return total, moment
+            com = pose @ pose_matrix(lk.inertial.origin.xyz, lk.inertial.origin.rpy)
+            own[name] = (lk.inertial.mass, lk.inertial.mass * com[:3, 3])
+        else:
+            own[name] = (0.0, np.zeros(3))
+    order: list[str] = []
+    root = robot.root()
+    todo = [root] if root in poses else []
+    seen: set[str] = set()
+    while todo:
+        name = todo.pop()
+        if name is None or name in seen:
+            continue
+        seen.add(name)
+        order.append(name)
+        todo += [j.child for j in robot.child_joints(name) if j.child in poses]
+    total: dict[str, tuple[float, np.ndarray]] = {}
+    for name in reversed(order):  # children before parents
+        mass, moment = own[name]
+        for j in robot.child_joints(name):
+            if j.child in total:
+                cm, cmo = total[j.child]
+                mass, moment = mass + cm, moment + cmo
+        total[name] = (mass, moment)
+    return total
+
+
+def _max_abs_harmonic(a: float, b: float, lo: float, hi: float) -> float:
+    """max |a cos q + b sin q| over [lo, hi]: the ends and every stationary point inside."""
+    candidates = [lo, hi]
+    if hi - lo >= 2 * math.pi:
+        return math.hypot(a, b)
+    base = math.atan2(b, a)
+    k = math.floor((lo - base) / math.pi)
+    while base + k * math.pi <= hi:
+        q = base + k * math.pi
+        if q >= lo:
+            candidates.append(q)
+        k += 1
+    return max(abs(a * math.cos(q) + b * math.sin(q)) for q in candidates)
 
 
 @rule("JOINT008", "effort-below-gravity-load", "error")
@@ -202,18 +232,18 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     """## What it does
     Computes the static gravity torque (or force) each revolute or prismatic joint must
     hold: the mass of everything it carries times the lever arm of their common centre of
-    mass, over the joint's own range (other joints at zero, gravity along -z of the root),
-    and flags an effort limit below it.
+    mass, at the worst angle of the joint's own range (other joints at zero, gravity along
+    -z of the root), and flags an effort limit below it.
     ## Why is this bad?
     The joint cannot hold its own arm up: on the robot it sags or faults; in simulation it
     falls while the description claims it can lift.
     """
     from ...kinematics import forward
-    from ...transforms import axis_angle_matrix
 
     poses = forward(robot)
     if not poses:
         return
+    loads = _subtree_loads(robot, poses)
     g = np.array([0.0, 0.0, -G])
     for j in robot.joints:
         if j.type not in ("revolute", "prismatic") or j.limit is None or j.limit.effort is None or j.child is None:
@@ -222,7 +252,7 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
             continue  # JOINT005 reports a zero effort limit
         if j.child not in poses or j.axis is None or math.hypot(*j.axis) == 0:
             continue
-        mass, moment = _subtree_mass_moment(robot, j.child, poses)
+        mass, moment = loads[j.child]
         if mass <= 0:
             continue
         frame = poses[j.child]  # the joint frame at zero: its axis is in child coordinates
@@ -231,13 +261,15 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
             need = abs(float(np.dot(mass * g, axis)))
             what = f"{need:.4g} N along its axis"
         else:
+            # turning the load by q about the axis: torque(q) = A cos q + B sin q (Rodrigues;
+            # the axis-parallel part of the lever gives none, since a x g is normal to a)
             lever = moment - mass * frame[:3, 3]  # sum m (c - p)
+            k = np.cross(axis, g)
+            a = float(np.dot(lever, k))
+            b = float(np.dot(np.cross(axis, lever), k))
             lo = j.limit.lower if j.limit.lower is not None else -math.pi
             hi = j.limit.upper if j.limit.upper is not None else math.pi
-            k = np.cross(axis, g)
-            need = max(
-                abs(float(np.dot(axis_angle_matrix(tuple(axis), q) @ lever, k))) for q in np.linspace(lo, hi, 73)
-            )
+            need = _max_abs_harmonic(a, b, min(lo, hi), max(lo, hi))
             what = f"{need:.4g} N*m"
         if need > abs(j.limit.effort) * (1 + 1e-9) and need > 1e-6:
             yield at(
