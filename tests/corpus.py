@@ -7,10 +7,6 @@ from pathlib import Path
 
 def share() -> Path | None:
     """``.../cmeel.prefix/share``, where example-robot-data installs its robots."""
-    try:
-        import cmeel  # noqa: F401  (example-robot-data installs through cmeel)
-    except ImportError:
-        pass
     import site
     import sys
 
