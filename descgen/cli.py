@@ -261,6 +261,48 @@ def _cmd_faults(args: argparse.Namespace) -> int:
     return EXIT_FAILED if any(r.applicable and not r.caught for r in results) else EXIT_OK
 
 
+def _cmd_frames(args: argparse.Namespace) -> int:
+    from .audit import run
+    from .audit.inputs import load_description
+    from .frames import edges
+
+    robot, _ = load_description(Path(args.path), _audit_options(args))  # type: ignore[arg-type]
+    es = edges(robot)
+    found = [f for f in run(robot) if f.code.startswith("FRAME")]
+    if args.format == "json":
+        doc = [
+            {
+                "parent": e.parent,
+                "child": e.child,
+                "owner": e.owner,
+                "topic": e.topic,
+                "static": e.static,
+                "joint": e.joint,
+                "fed_by": e.via,
+            }
+            for e in es
+        ]
+        sys.stdout.write(report.as_json(found, frames=doc))
+        return exit_code(found)
+    children: dict[str, list[object]] = {}
+    for e in es:
+        children.setdefault(e.parent, []).append(e)
+    roots = [p for p in children if p not in {e.child for e in es}]
+
+    def show(frame: str, depth: int, seen: set[str]) -> None:
+        for e in children.get(frame, []):
+            kind = "static" if e.static else "dynamic"  # type: ignore[attr-defined]
+            print(f"{'  ' * depth}{e.child}  <- {e.owner} on {e.topic} ({kind}; {e.via})")  # type: ignore[attr-defined]
+            if e.child not in seen:  # type: ignore[attr-defined]
+                show(e.child, depth + 1, seen | {e.child})  # type: ignore[attr-defined]
+
+    for r in roots:
+        print(r)
+        show(r, 1, {r})
+    sys.stderr.write(report.text(found))
+    return exit_code(found)
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -341,6 +383,15 @@ def parser() -> argparse.ArgumentParser:
     f.add_argument("--package-path", action="append", metavar="DIR")
     f.add_argument("--format", choices=("text", "json"), default="text")
     f.set_defaults(fn=_cmd_faults)
+
+    fr = sub.add_parser("frames", help="the transform tree with the publisher of every edge")
+    fr.add_argument("path")
+    fr.add_argument("--srdf")
+    fr.add_argument("--controllers")
+    fr.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE")
+    fr.add_argument("--package-path", action="append", metavar="DIR")
+    fr.add_argument("--format", choices=("text", "json"), default="text")
+    fr.set_defaults(fn=_cmd_frames)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

@@ -19,10 +19,12 @@ from .model import (
     ControlJoint,
     Controller,
     Cylinder,
+    ExternalFrame,
     Geometry,
     Inertia,
     Interface,
     Joint,
+    JointStateSource,
     Link,
     Mesh,
     Pose,
@@ -317,6 +319,46 @@ def command_beyond_limit(robot: Robot) -> Planted:
     return None
 
 
+def second_frame_owner(robot: Robot) -> Planted:
+    movable = [j for j in robot.joints if j.type != "fixed"]
+    for j in movable or list(robot.joints):
+        if j.parent is not None and j.child is not None:
+            extra = ExternalFrame(j.parent, j.child, "planted_odometry_node")
+            return replace(robot, external_frames=(*robot.external_frames, extra)), (
+                f"a second publisher (planted_odometry_node) for {j.parent} -> {j.child}"
+            )
+    return None
+
+
+def joint_without_state(robot: Robot) -> Planted:
+    movable = [j.name for j in robot.joints if j.type in ("revolute", "continuous", "prismatic")]
+    driven = [j.name for j in robot.joints if j.name in movable and j.mimic is None]  # a mimic follows its leader
+    if not driven:
+        return None
+    victim = driven[-1]
+    movable.remove(victim)
+    rc = robot.ros2_control
+    if rc is None:
+        joints = tuple(ControlJoint(n, (Interface("position"),), (Interface("position"),)) for n in movable)
+        jsb = Controller("joint_state_broadcaster", "joint_state_broadcaster/JointStateBroadcaster")
+        planted = Ros2Control("planted_system", joints=joints, controllers=(jsb,), update_rate=100.0)
+        return replace(robot, ros2_control=planted), (
+            f"ros2_control block without joint {victim} (added; the description had none)"
+        )
+    joints = tuple(
+        replace(cj, state=tuple(i for i in cj.state if i.name != "position")) if cj.name == victim else cj
+        for cj in rc.joints
+    )
+    return replace(robot, ros2_control=replace(rc, joints=joints)), f"position state interface of {victim} removed"
+
+
+def desired_on_joint_states(robot: Robot) -> Planted:
+    source = JointStateSource("trajectory_preview", "desired")
+    return replace(robot, joint_state_sources=(*robot.joint_state_sources, source)), (
+        "a node publishing desired (commanded) positions on /joint_states"
+    )
+
+
 CATALOGUE: tuple[Fault, ...] = (
     Fault("origin-x1000", "a joint origin written in millimetres as metres", ("UNIT011", "POSE010"), origin_x1000),
     Fault(
@@ -351,6 +393,18 @@ CATALOGUE: tuple[Fault, ...] = (
         controller_on_missing_joint,
     ),
     Fault("command-beyond-limit", "a command limit beyond the URDF limit", ("CTRL008",), command_beyond_limit),
+    Fault(
+        "two-frame-owners",
+        "a second node publishing a transform the robot already publishes",
+        ("FRAME001",),
+        second_frame_owner,
+    ),
+    Fault(
+        "joint-without-state", "a movable joint with no position state interface", ("FRAME002",), joint_without_state
+    ),
+    Fault(
+        "desired-on-joint-states", "desired commands published on /joint_states", ("FRAME005",), desired_on_joint_states
+    ),
 )
 
 

@@ -83,7 +83,7 @@ def _hand_edited(package_dir: Path, files: dict[str, str]) -> list[str]:
 
 # What generate owns; other commands may add their own evidence to the package.
 _OWN_DIRS = {"urdf", "srdf", "config", "launch", "rviz", "package.xml", "CMakeLists.txt"}
-_OWN_FILES: set[str] = {"evidence/known_poses.md"}
+_OWN_FILES: set[str] = {"evidence/known_poses.md", "evidence/frames.md", "evidence/frames.dot"}
 
 
 def _ours(package_dir: Path) -> list[str]:
@@ -155,7 +155,22 @@ def generate(spec: Path, out_root: Path | None = None, templates: Path | None = 
         return outcome
     written = write_package(p.package_dir, p.files)
     written.findings = outcome.findings
+    draw_frames(p.package_dir)
     return written
+
+
+def draw_frames(package_dir: Path) -> None:
+    """evidence/frames.svg from frames.dot when Graphviz's dot is installed. Its bytes depend
+    on the Graphviz version, so it is not part of what check compares (and not committed)."""
+    dot = shutil.which("dot")
+    source = package_dir / "evidence" / "frames.dot"
+    if dot is None or not source.is_file():
+        return
+    import subprocess
+
+    subprocess.run(
+        [dot, "-Tsvg", str(source), "-o", str(source.with_suffix(".svg"))], check=False, capture_output=True, timeout=60
+    )
 
 
 def check(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Outcome:

@@ -338,6 +338,27 @@ class Constant:
 
 
 @dataclass(frozen=True)
+class ExternalFrame:
+    parent: str
+    child: str
+    owner: str
+    static: bool = False
+    where: Where = NOWHERE
+
+    @property
+    def subject(self) -> str:
+        return f"frame:{self.child}"
+
+
+@dataclass(frozen=True)
+class JointStateSource:
+    node: str
+    kind: str = "measured"  # measured | desired
+    joints: tuple[str, ...] = ()  # empty: every joint
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
 class PackageInfo:
     version: str = "0.1.0"
     maintainer: str = "descgen user"
@@ -360,6 +381,8 @@ class Robot:
     refs: tuple[tuple[tuple[str, str], str], ...] = ()
     description: str | None = None
     package: PackageInfo = PackageInfo()
+    external_frames: tuple[ExternalFrame, ...] = ()
+    joint_state_sources: tuple[JointStateSource, ...] = ()
     where: Where = NOWHERE
     source_file: str | None = None
     spec_hash: str | None = None
@@ -396,6 +419,23 @@ class Robot:
             if j.parent is not None:
                 out.setdefault(j.parent, []).append(j)
         return out
+
+    @functools.cached_property
+    def _bodies(self) -> dict[str, frozenset[str]]:
+        """Links welded together by fixed joints, per link (one rigid body)."""
+        group: dict[str, set[str]] = {lk.name: {lk.name} for lk in self.links}
+        for j in self.joints:
+            if j.type == "fixed" and j.parent in group and j.child in group:
+                a, b = group[j.parent], group[j.child]
+                if a is not b:
+                    a |= b
+                    for name in b:
+                        group[name] = a
+        return {name: frozenset(g) for name, g in group.items()}
+
+    def body_of(self, link: str) -> frozenset[str]:
+        """``link`` and every link welded to it by fixed joints."""
+        return self._bodies.get(link, frozenset({link}))
 
     def link(self, name: str) -> Link | None:
         return self._links_by_name.get(name)

@@ -208,7 +208,10 @@ def test_sarif_validates_against_the_sarif_2_1_0_schema(tmp_path: Path) -> None:
 
 def test_strict_turns_warnings_into_failures(tmp_path: Path) -> None:
     urdf = tmp_path / "w.urdf"
-    urdf.write_text('<robot name="w"><link name="body"/></robot>')  # no base_link: a warning only
+    urdf.write_text(
+        '<robot name="w"><link name="a"/><link name="b"/><joint name="j-1" type="continuous">'
+        '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint></robot>'
+    )  # NAME003: a warning
     assert run_cli("audit", str(urdf)).returncode == 0
     assert run_cli("audit", "--strict", str(urdf)).returncode == 1
 
@@ -217,7 +220,7 @@ def test_exit_code_function() -> None:
     from descgen.cli import exit_code
     from descgen.findings import Finding
 
-    warn = Finding("NAME010", "warning", "m")
+    warn = Finding("NAME003", "warning", "m")
     err = Finding("TOPO001", "error", "m")
     assert exit_code([]) == 0 and exit_code([warn]) == 0 and exit_code([warn], strict=True) == 1
     assert exit_code([err]) == 1 and exit_code([], input_error=True) == 2
@@ -259,7 +262,12 @@ def _with_controller_param(name: str, key: str, value: object) -> Robot:
 EDITS: dict[str, Callable[[], Robot]] = {
     "TOPO001": lambda: dataclasses.replace(ROBOT, joints=tuple(j for j in ROBOT.joints if j.name != "arm_mount_joint")),
     "NAME002": lambda: _edit_joint("tool_joint", name="elbow_joint"),
-    "NAME003": lambda: _edit_joint("tool_joint", name="tool-joint"),
+    "NAME003": lambda: _edit_joint("elbow_joint", name="elbow-joint"),
+    "FRAME003": lambda: _edit_joint("camera_joint", type="floating"),
+    "FRAME004": lambda: _with_controller_param("joint_state_broadcaster", "frame_id", "nowhere_frame"),
+    "GEOM005": lambda: dataclasses.replace(
+        _edit_lift_mesh(), extras={**ROBOT.extras, "mesh_status": {"meshes/b.stl": "unresolved"}}
+    ),
     "NAME010": lambda: dataclasses.replace(
         ROBOT,
         links=tuple(dataclasses.replace(lk, name="chassis") if lk.name == "base_link" else lk for lk in ROBOT.links),
@@ -279,7 +287,7 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "JOINT005": lambda: _edit_joint("elbow_joint", limit=Limit(-1.0, 1.0, 0.0, 1.0)),
     "INER002": lambda: dataclasses.replace(
         ROBOT,
-        links=tuple(dataclasses.replace(lk, inertial=None) if lk.name == "forearm_link" else lk for lk in ROBOT.links),
+        links=tuple(dataclasses.replace(lk, inertial=None) if lk.name == "shoulder_link" else lk for lk in ROBOT.links),
     ),
     "INER003": lambda: dataclasses.replace(
         ROBOT,

@@ -139,7 +139,7 @@ def random_robot(draw: st.DrawFn) -> tuple[str, dict[str, float]]:
 @given(random_robot())
 def test_random_trees_agree_with_pinocchio(case: tuple[str, dict[str, float]]) -> None:
     text, values = case
-    robot = load_spec_text(text, "random.yaml").robot
+    robot = load_spec_text(text, "random.yaml", rules=False).robot  # kinematics only: FRAME003 would object
     assert_same_frames(robot, values)
 
 

@@ -59,7 +59,7 @@ def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) 
             name = g.filename
             if name.startswith("package://"):
                 pkg, _, rest = name[len("package://") :].partition("/")
-                root = find_package(pkg, [*package_paths, base.parent, base])
+                root = find_package(pkg, [*package_paths, base.parent, base]) if pkg else None
                 if root is None:
                     out[name] = "unresolved"
                     continue

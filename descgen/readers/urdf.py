@@ -264,9 +264,11 @@ class _Reader:
     def ros2_control(self, blocks: list[etree._Element]) -> m.Ros2Control | None:
         if not blocks:
             return None
+        # a robot may split its hardware over several <ros2_control> blocks (one per bus);
+        # the model keeps the first block's name and plugin and every block's joints
         b = blocks[0]
         joints = []
-        for je in b.findall("joint"):
+        for je in (je for block in blocks for je in block.findall("joint")):
 
             def interfaces(tag: str, je: etree._Element = je) -> tuple[m.Interface, ...]:
                 out = []
@@ -322,6 +324,28 @@ def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
                     r.where(root),
                 )
             ]
+        )
+    if not root.get("name"):
+        r.findings.append(
+            Finding(
+                "READ012",
+                "error",
+                "<robot> has no name (urdfdom refuses the file)",
+                'add name="..." to <robot>',
+                "robot",
+                r.where(root),
+            )
+        )
+    if root.find("link") is None:
+        r.findings.append(
+            Finding(
+                "READ013",
+                "error",
+                "the robot has no links (urdfdom refuses the file)",
+                "is this the right file?",
+                "robot",
+                r.where(root),
+            )
         )
     robot = m.Robot(
         root.get("name", ""),

@@ -58,6 +58,7 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append((f"srdf/{n}.srdf", "robot.srdf.j2", False))
     if robot.known_poses:
         files.append(("evidence/known_poses.md", "known_poses.md.j2", False))
+    files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
     return files
 
 

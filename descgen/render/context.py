@@ -114,6 +114,35 @@ def known_pose_tables(robot: Robot) -> list[dict[str, Any]]:
     return tables
 
 
+def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    """Nodes (with diagram-safe ids) and edges of the frame tree, for frames.md and frames.dot."""
+    from ..frames import edges
+
+    es = edges(robot)
+    names: list[str] = []
+    for e in es:
+        for n in (e.parent, e.child):
+            if n not in names:
+                names.append(n)
+    ids = {n: f"f{i}" for i, n in enumerate(names)}
+    nodes = [{"id": ids[n], "label": n.replace('"', "#quot;")} for n in names]
+    rows = [
+        {
+            "parent": e.parent,
+            "child": e.child,
+            "parent_id": ids[e.parent],
+            "child_id": ids[e.child],
+            "owner": e.owner.replace('"', "'"),
+            "topic": e.topic,
+            "static": e.static,
+            "joint": e.joint,
+            "via": e.via,
+        }
+        for e in es
+    ]
+    return nodes, rows
+
+
 def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     """Context for one template family: ``xacro`` chooses property references and
     xacro-escaped free text over plain numbers and text."""
@@ -163,6 +192,8 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "disabled": disabled,
         "fixed_frame": root,
         "poses": known_pose_tables(robot) if not xacro else [],
+        "frame_nodes": frame_graph(robot)[0] if not xacro else [],
+        "frame_edges": frame_graph(robot)[1] if not xacro else [],
         "view_distance": num(max(2.0, 4 * extent)),
         "view_focal_z": num(0.5),
         "package": {

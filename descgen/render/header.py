@@ -18,6 +18,8 @@ _HASHES = re.compile(r"descgen spec-sha256=([0-9a-f]{64}) content-sha256=([0-9a-
 def _style(path: str) -> tuple[str, str]:
     if path.endswith((".xml", ".urdf", ".xacro", ".srdf", ".md")):
         return "<!-- ", " -->"
+    if path.endswith(".dot"):
+        return "// ", ""
     return "# ", ""
 
 

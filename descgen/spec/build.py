@@ -344,6 +344,14 @@ class Builder:
             package=m.PackageInfo(
                 spec.package.version, spec.package.maintainer, spec.package.email, spec.package.license
             ),
+            external_frames=tuple(
+                m.ExternalFrame(e.parent, e.child, e.owner, e.static, self.where(("frames", "external", i)))
+                for i, e in enumerate(spec.frames.external)
+            ),
+            joint_state_sources=tuple(
+                m.JointStateSource(js.node, js.kind, tuple(js.joints), self.where(("frames", "joint_state_sources", i)))
+                for i, js in enumerate(spec.frames.joint_state_sources)
+            ),
         )
         if spec.semantic is None:
             return robot

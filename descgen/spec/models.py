@@ -431,6 +431,30 @@ class KnownPoseSpec(Base):
     description: Text | None = None
 
 
+class ExternalFrameSpec(Base):
+    """A transform something outside the URDF publishes (localisation, a driver, calibration)."""
+
+    parent: Name
+    child: Name
+    owner: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
+    static: bool = False
+    source: Source | None = None
+
+
+class JointStateSourceSpec(Base):
+    """A node publishing /joint_states; ``desired`` marks one that publishes commands."""
+
+    node: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
+    kind: Literal["measured", "desired"] = "measured"
+    joints: list[Name] = []
+    source: Source | None = None
+
+
+class FramesSpec(Base):
+    external: list[ExternalFrameSpec] = []
+    joint_state_sources: list[JointStateSourceSpec] = []
+
+
 class RangeSpec(Base):
     min: Raw | None = None
     max: Raw | None = None
@@ -463,6 +487,7 @@ class RobotSpec(Base):
     ros2_control: Ros2ControlSpec | None = None
     semantic: SemanticSpec | None = None
     known_poses: list[KnownPoseSpec] = []
+    frames: FramesSpec = FramesSpec()
 
 
 __all__ = ["Measured", "RobotSpec"]

@@ -28,12 +28,12 @@ def is_mobile_base(robot: Robot) -> bool:
 @rule("NAME010", "no-base-link", "warning")
 def no_base_link(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Flags a robot without a `base_link` frame.
+    Flags a wheeled robot (REP 105 is about mobile platforms) without a `base_link` frame.
     ## Why is this bad?
     REP 105 names the frame rigidly attached to the base `base_link`; navigation,
     odometry and most tools look it up by that name.
     """
-    if robot.links and robot.link("base_link") is None:
+    if robot.links and robot.link("base_link") is None and is_mobile_base(robot):
         yield at(
             "NAME010",
             robot,

@@ -10,7 +10,8 @@ from ...model import Robot
 from ..registry import at, rule
 from .scale import dims
 
-PLACEHOLDER = 0.005  # metres: shapes smaller than this everywhere are stand-ins
+PLACEHOLDER = 0.011  # metres: shapes within a centimetre everywhere are markers and contact points
+PLACEHOLDER_MASS = 0.001  # kg: dummy masses (the real one sits on a welded link)
 
 
 def density_range(robot: Robot) -> units.Range:
@@ -33,7 +34,7 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
     """
     r = density_range(robot)
     for lk in robot.links:
-        if lk.inertial is None or lk.inertial.mass is None or lk.inertial.mass <= 0:
+        if lk.inertial is None or lk.inertial.mass is None or lk.inertial.mass <= PLACEHOLDER_MASS:
             continue
         shapes = [c.geometry for c in lk.collisions] or [v.geometry for v in lk.visuals]
         if not shapes or any(g is None for g in shapes):
@@ -51,7 +52,7 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
             continue
         hint = "is the mass in the wrong unit (g vs kg)? or the geometry (mm vs m)?"
         if rho > r.high and r.low <= rho / 1000 <= r.high:
-            hint = "the mass looks 1000x too large: grams written as kilograms?"
+            hint = "the mass looks 1000x too large for the shape: grams written as kilograms, or a stand-in shape?"
         elif rho < r.low and r.low <= rho * 1000 <= r.high:
             hint = "the mass looks 1000x too small (kilograms written as grams?), or the geometry 10x too large"
         # heavier than any metal is impossible; lighter than foam may be a light part in a

@@ -8,20 +8,25 @@ from ... import inertia
 from ...findings import Finding
 from ...model import Robot
 from ..registry import at, rule
+from .density import PLACEHOLDER
 from .inertia import _moving_links
+from .scale import dims
 
 
 @rule("GEOM001", "moving-link-without-collision", "warning")
 def moving_link_without_collision(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Flags a link that a joint moves, that has visual geometry but no collision geometry.
+    Flags a link that a joint moves, that has visual geometry but no collision geometry
+    (on itself or on any link welded to it by fixed joints).
     ## Why is this bad?
     Planners and simulators see through it: the arm can be planned straight through the
     part you can see.
     """
     moving = _moving_links(robot)
     for lk in robot.links:
-        if lk.name in moving and lk.visuals and not lk.collisions:
+        body = robot.body_of(lk.name)
+        collides = any(other.collisions for n in body if (other := robot.link(n)) is not None)
+        if lk.name in moving and lk.visuals and not collides:
             yield at(
                 "GEOM001",
                 lk,
@@ -46,6 +51,8 @@ def collision_visual_size_mismatch(robot: Robot) -> Iterator[Finding]:
         cv = [inertia.volume(c.geometry) if c.geometry else None for c in lk.collisions]
         if any(x is None for x in vv + cv):
             continue
+        if max((d for shape in lk.visuals for d in dims(shape.geometry)), default=0.0) < PLACEHOLDER:
+            continue  # a marker visual on a collision stand-in
         v, c = sum(x for x in vv if x), sum(x for x in cv if x)
         if v > 0 and c > 0 and not 0.1 <= c / v <= 10:
             yield at(
@@ -101,5 +108,28 @@ def mesh_escapes_package(robot: Robot) -> Iterator[Finding]:
                     shape,
                     f"link '{lk.name}' mesh '{name}' points outside its package",
                     "use package://<pkg>/<path inside the package>",
+                    subject=lk.subject,
+                )
+
+
+@rule("GEOM005", "mesh-not-resolvable", "warning")
+def mesh_not_resolvable(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a `package://` mesh whose package cannot be found (no `--package-path` holds it,
+    or the URI names no package at all, as in `package:///abs/path`).
+    ## Why is this bad?
+    resource_retriever fails the same way on the robot: the part is invisible and has no
+    collision shape. (Give --package-path to check the file itself.)
+    """
+    status = _mesh_status(robot)
+    for lk in robot.links:
+        for shape in lk.shapes():
+            name = getattr(shape.geometry, "filename", None)
+            if name and status.get(name) == "unresolved":
+                yield at(
+                    "GEOM005",
+                    shape,
+                    f"link '{lk.name}' mesh '{name}' names a package that cannot be found",
+                    "fix the package name, or pass --package-path",
                     subject=lk.subject,
                 )

@@ -59,6 +59,7 @@ def non_positive_mass(robot: Robot) -> Iterator[Finding]:
                 lk.inertial,
                 f"link '{lk.name}' mass is {mass:.6g} kg{why}",
                 "write the measured mass (> 0)",
+                severity="error" if mass < 0 else _severity(robot, lk, moving),
                 subject=lk.subject,
             )
 
@@ -71,7 +72,7 @@ def _has_tensor(lk: Link) -> bool:
 def _weighed(lk: Link) -> bool:
     """A link that carries mass (a massless, tensorless inertial is a placeholder)."""
     i = lk.inertial
-    return i is not None and i.inertia is not None and i.mass is not None and (i.mass > 0 or _has_tensor(lk))
+    return i is not None and i.inertia is not None and i.mass is not None and (i.mass > MASSLESS or _has_tensor(lk))
 
 
 def _severity(robot: Robot, lk: Link, bodies: set[str]) -> Severity:
@@ -83,8 +84,8 @@ def _severity(robot: Robot, lk: Link, bodies: set[str]) -> Severity:
 @rule("INER002", "moving-link-without-mass", "error")
 def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Finds a link with geometry that a moving joint carries but that has no inertial
-    (an error on a link with its own joint, a warning on one welded to it).
+    Finds a link with geometry that a moving joint carries when neither it nor any link
+    welded to it by fixed joints has an inertial.
     ## Why is this bad?
     Simulators drop or mis-simulate massless bodies; gravity compensation and the
     static-torque check ignore it.
@@ -92,7 +93,9 @@ def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
     bodies = own_bodies(robot)
     for name in sorted(_moving_links(robot)):
         lk = robot.link(name)
-        if lk is not None and lk.inertial is None and _carries_geometry(robot, name):
+        body = robot.body_of(name)
+        weighed = any(other.inertial is not None for n in body if (other := robot.link(n)) is not None)
+        if lk is not None and not weighed and _carries_geometry(robot, name):
             welded = "" if name in bodies else " (welded to a moving link)"
             yield at(
                 "INER002",
@@ -153,6 +156,7 @@ def _fmt(values: object) -> str:
     return "[" + ", ".join(f"{float(v):.4g}" for v in values) + "]"  # type: ignore[attr-defined]
 
 
+MASSLESS = 1e-6  # kg: a "mass" this small is a frame's placeholder, not a body
 DENSEST = 22_600.0  # kg/m^3, osmium: no solid part is denser
 
 
@@ -170,7 +174,7 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
     moving = own_bodies(robot)
     for lk in robot.links:
         i = lk.inertial
-        if i is None or i.inertia is None or i.mass is None or i.mass <= 0:
+        if i is None or i.inertia is None or i.mass is None or i.mass <= MASSLESS:
             continue
         t = i.inertia
         half_trace = (t.ixx + t.iyy + t.izz) / 2
@@ -227,6 +231,8 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
         i = lk.inertial
         if i is None or i.mass is None or i.mass <= 0:
             continue
+        if any(other.collisions for n in robot.body_of(lk.name) - {lk.name} if (other := robot.link(n)) is not None):
+            continue  # the body's material is partly on welded links: one box says too little
         box = _aabb(robot, lk.name)
         if box is None:
             continue

@@ -233,7 +233,8 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     Computes the static gravity torque (or force) each revolute or prismatic joint must
     hold: the mass of everything it carries times the lever arm of their common centre of
     mass, at the worst angle of the joint's own range (other joints at zero, gravity along
-    -z of the root), and flags an effort limit below it.
+    -z of the root), and flags an effort limit below it. Joints with a range under 1 cm
+    or about 1 degree (suspensions, compliance) are skipped: they rest on their stops.
     ## Why is this bad?
     The joint cannot hold its own arm up: on the robot it sags or faults; in simulation it
     falls while the description claims it can lift.
@@ -250,6 +251,9 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
             continue
         if j.limit.effort == 0:
             continue  # JOINT005 reports a zero effort limit
+        lo_, hi_ = j.limit.lower, j.limit.upper
+        if lo_ is not None and hi_ is not None and abs(hi_ - lo_) <= (0.01 if j.type == "prismatic" else 0.02):
+            continue  # a suspension or compliance joint: it rests on its end stop, it does not hold
         if j.child not in poses or j.axis is None or math.hypot(*j.axis) == 0:
             continue
         mass, moment = loads[j.child]

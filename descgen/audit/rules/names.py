@@ -52,12 +52,21 @@ def duplicate_joint_name(robot: Robot) -> Iterator[Finding]:
 @rule("NAME003", "unusable-name", "warning")
 def unusable_name(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Flags link and joint names that are not plain identifiers ([A-Za-z][A-Za-z0-9_]*).
+    Flags movable joint names that are not plain identifiers ([A-Za-z][A-Za-z0-9_]*), and
+    link names that cannot be tf frame ids (empty, a leading '/', blanks).
     ## Why is this bad?
     ros2_control builds `<joint>/<interface>` and parameter paths such as `gains.<joint>.p`
-    from joint names; tf frame ids must not start with '/'.
+    from joint names (fixed joints never reach it); tf refuses frame ids starting with '/'.
     """
-    elems: list[Link | Joint] = [*robot.links, *robot.joints]
+    for lk in robot.links:
+        if not lk.name or lk.name.startswith("/") or any(c.isspace() for c in lk.name):
+            yield at(
+                "NAME003",
+                lk,
+                f"link name '{lk.name}' cannot be a tf frame id (empty, leading '/' or blank)",
+                "use letters, digits and _, starting with a letter",
+            )
+    elems: list[Link | Joint] = [j for j in robot.joints if j.type != "fixed"]
     for elem in elems:
         if not _IDENT.match(elem.name):
             message = f"name '{elem.name}' is not a plain identifier"

@@ -12,6 +12,7 @@ from ..registry import at, rule
 
 FACTOR = 50.0  # ×1000 mistakes land far beyond this; real designs stay far below it
 FLOOR = 1.0  # metres: never flag anything shorter
+_PRIMITIVES = ("cube", "box", "cylinder", "sphere")  # unit shapes scaled to size: the scale is the size
 
 
 def robot_scale(robot: Robot) -> float:
@@ -78,7 +79,8 @@ def implausible_size(robot: Robot) -> Iterator[Finding]:
 @rule("UNIT013", "suspicious-mesh-scale", "warning")
 def suspicious_mesh_scale(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Flags a mesh scale component other than 1 or 0.001 (either sign).
+    Flags a mesh scale component other than 1 or 0.001 (either sign), except on meshes
+    named as unit primitives (cube, box, cylinder, sphere), whose scale is their size.
     ## Why is this bad?
     Meshes are exported in metres (1) or millimetres (0.001); any other factor usually
     means a unit guess (0.01, 0.0254) that deserves a second look.
@@ -86,8 +88,15 @@ def suspicious_mesh_scale(robot: Robot) -> Iterator[Finding]:
     for lk in robot.links:
         for shape in lk.shapes():
             g = shape.geometry
-            if isinstance(g, Mesh) and any(
-                not math.isclose(abs(s), 1.0) and not math.isclose(abs(s), 0.001) for s in g.scale
+            primitive = (
+                any(word in g.filename.lower().rsplit("/", 1)[-1] for word in _PRIMITIVES)
+                if isinstance(g, Mesh)
+                else False
+            )
+            if (
+                isinstance(g, Mesh)
+                and not primitive
+                and any(not math.isclose(abs(s), 1.0) and not math.isclose(abs(s), 0.001) for s in g.scale)
             ):
                 yield at(
                     "UNIT013",

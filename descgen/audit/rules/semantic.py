@@ -79,6 +79,7 @@ def group_state_bad(robot: Robot) -> Iterator[Finding]:
     if sem is None:
         return
     groups = {g.name for g in sem.groups}
+    virtual = {v.name for v in sem.virtual_joints}
     for st in sem.states:
         s = f"group_state:{st.name}"
         if st.group not in groups:
@@ -87,11 +88,11 @@ def group_state_bad(robot: Robot) -> Iterator[Finding]:
             )
         for name, value in st.values:
             j = robot.joint(name)
-            if j is None:
+            if j is None and name not in virtual:
                 yield at(
                     "SRDF002", st, f"state '{st.name}' names unknown joint '{name}'", "fix the joint name", subject=s
                 )
-            elif j.outside_limits(value):
+            elif j is not None and j.outside_limits(value):
                 message = f"state '{st.name}' sets '{name}' to {j.show(value)}, outside {j.range_text()}"
                 yield at("SRDF002", st, message, "fix the value or the limits", subject=s)
 
