@@ -303,6 +303,64 @@ def _cmd_frames(args: argparse.Namespace) -> int:
     return exit_code(found)
 
 
+def _ns(text: str, what: str) -> int:
+    from . import units
+
+    try:
+        return round(units.to_si(text, "time") * 1e9)
+    except units.QuantityError as exc:
+        raise InputError(
+            [Finding(exc.code, "error", f"{what}: {exc.message}", exc.hint, "option", Where("<command line>"))]
+        ) from None
+
+
+def _cmd_tf_audit(args: argparse.Namespace) -> int:
+    from .tf.bagaudit import audit
+
+    max_age = _ns(args.max_age, "--max-age") if args.max_age else None
+    rep = audit(Path(args.bag), args.target, tuple(args.topic or ()), _ns(args.wait, "--wait"), max_age)
+    failed = rep.lookups - rep.counts["ok"]
+    if args.format == "json":
+        sys.stdout.write(json.dumps(rep.as_dict(), indent=2) + "\n")
+    else:
+        print(
+            f"{rep.lookups} lookups into '{args.target}': {rep.counts['ok']} ok, {rep.counts['disconnected']} "
+            f"disconnected, {rep.counts['stale']} stale, {rep.counts['future']} future-dated"
+        )
+        for topic, c in sorted(rep.per_topic.items()):
+            print(f"  {topic}: " + ", ".join(f"{k} {c[k]}" for k in ("ok", "disconnected", "stale", "future")))
+        print("latency (log time - stamp): " + ", ".join(f"{k} ms: {v}" for k, v in sorted(rep.latency.items())))
+        for e in rep.examples:
+            print(
+                f"  {e['outcome']}: {e['topic']} logged {e['log_time_ns'] / 1e9:.6f} stamped "
+                f"{e['stamp_ns'] / 1e9:.6f} in '{e['frame_id']}': {e['detail']}"
+            )
+    return EXIT_FAILED if failed else EXIT_OK
+
+
+def _cmd_tf_scenario(args: argparse.Namespace) -> int:
+    from .spec import load_spec
+    from .tf.scenario import write
+
+    out = Path(args.out)
+    if out.exists():
+        raise InputError(
+            [
+                Finding(
+                    "BAG003",
+                    "error",
+                    f"{out} exists; a recording is written to a new folder",
+                    "choose another --out",
+                    "option",
+                    Where(str(out)),
+                )
+            ]
+        )
+    counts = write(load_spec(args.spec).robot, out, tuple(args.fault or ()), float(args.duration), args.storage)
+    print(f"wrote {out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
+    return EXIT_OK
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -392,6 +450,23 @@ def parser() -> argparse.ArgumentParser:
     fr.add_argument("--package-path", action="append", metavar="DIR")
     fr.add_argument("--format", choices=("text", "json"), default="text")
     fr.set_defaults(fn=_cmd_frames)
+
+    ta = sub.add_parser("tf-audit", help="look up every sensor message of a rosbag2 recording at its stamp")
+    ta.add_argument("bag", help="rosbag2 folder (MCAP or sqlite3)")
+    ta.add_argument("--target", required=True, help="frame to look every message up in (e.g. odom)")
+    ta.add_argument("--topic", action="append", help="sensor topic (repeatable; default: every topic with a header)")
+    ta.add_argument("--wait", default="0 ms", help="how long a consumer waits for transforms (e.g. '50 ms')")
+    ta.add_argument("--max-age", help="flag interpolation across samples farther than this (e.g. '100 ms')")
+    ta.add_argument("--format", choices=("text", "json"), default="text")
+    ta.set_defaults(fn=_cmd_tf_audit)
+
+    sc = sub.add_parser("tf-scenario", help="write a short recording of the robot, optionally with planted faults")
+    sc.add_argument("spec")
+    sc.add_argument("--out", required=True, help="new rosbag2 folder to write")
+    sc.add_argument("--fault", action="append", choices=("camera-future", "odom-gap", "unknown-frame"))
+    sc.add_argument("--duration", default="10", help="seconds")
+    sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
+    sc.set_defaults(fn=_cmd_tf_scenario)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

@@ -73,7 +73,7 @@ def quat_matrix(q: Quat) -> np.ndarray:
     )
 
 
-def _quat_from_matrix(m: np.ndarray) -> Quat:
+def quat_from_matrix(m: np.ndarray) -> Quat:
     tr = m[0, 0] + m[1, 1] + m[2, 2]
     if tr > 0:
         s = math.sqrt(tr + 1.0) * 2
@@ -215,6 +215,33 @@ class BufferCore:
                 f"Invalid argument \"{frame}\" passed to {arg} in tf2 frame_ids cannot start with a '/' like: ",
             )
 
+    def nearest_gaps(self, target: str, source: str, time: int) -> list[tuple[str, int]]:
+        """For each dynamic link between the two frames: how far (ns) its nearest sample is
+        from ``time``. A lookup interpolating across a long gap succeeds in tf2; this says so."""
+        out = []
+        up = {f: i for i, f in enumerate(self._chain_of(source))}
+        chain_t = self._chain_of(target)
+        common = next((f for f in chain_t if f in up), None)
+        for chain in (self._chain_of(source), chain_t):
+            for frame in chain:
+                if frame == common:
+                    break
+                cache = self.caches.get(frame)
+                if cache is None or cache.static or not cache.samples:
+                    continue
+                stamps = [x.stamp for x in cache.samples]
+                i = bisect_left(stamps, time)
+                near = [abs(stamps[k] - time) for k in (i - 1, i) if 0 <= k < len(stamps)]
+                out.append((frame, min(near)))
+        return out
+
+    def _chain_of(self, frame: str) -> list[str]:
+        out = [frame]
+        while frame in self.caches and self.caches[frame].samples and len(out) < MAX_DEPTH:
+            frame = self.caches[frame].samples[-1].parent
+            out.append(frame)
+        return out
+
     def exists(self, frame: str) -> bool:
         return frame in self.caches or any(c.samples and c.samples[-1].parent == frame for c in self.caches.values())
 
@@ -341,4 +368,4 @@ def _matrix(s: Sample) -> np.ndarray:
 
 def _result(m: np.ndarray, time: int) -> Transform:
     t = (float(m[0, 3]), float(m[1, 3]), float(m[2, 3]))
-    return Transform(t, _quat_from_matrix(m[:3, :3]), time)
+    return Transform(t, quat_from_matrix(m[:3, :3]), time)

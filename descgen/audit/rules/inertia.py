@@ -72,7 +72,7 @@ def _has_tensor(lk: Link) -> bool:
 def _weighed(lk: Link) -> bool:
     """A link that carries mass (a massless, tensorless inertial is a placeholder)."""
     i = lk.inertial
-    return i is not None and i.inertia is not None and i.mass is not None and (i.mass > MASSLESS or _has_tensor(lk))
+    return i is not None and i.inertia is not None and i.mass is not None and i.mass > MASSLESS
 
 
 def _severity(robot: Robot, lk: Link, bodies: set[str]) -> Severity:

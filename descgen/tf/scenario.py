@@ -1,0 +1,185 @@
+"""``descgen tf-scenario``: a short rosbag2 recording of a spec's robot, with planted faults.
+
+What a running robot would record (reference/robot_state_publisher.md, ros2_control.md,
+rosbag2.md): robot_state_publisher's fixed joints once on /tf_static, joint_state_broadcaster's
+/joint_states at the controller rate and robot_state_publisher's /tf for the movable joints
+stamped with them, diff_drive_controller's odom -> base frame on /tf, and camera headers
+(sensor_msgs/CameraInfo) in the camera's optical frame. Log time = stamp + a small delay.
+
+Faults (each applied inside a time window so a test can check the right messages fail):
+- ``camera-future``: camera stamps 300 ms ahead of the clock, in [2 s, 3 s);
+- ``odom-gap``: no odometry transform in [4 s, 5 s);
+- ``unknown-frame``: camera frame_id not in the tree, in [6 s, 7 s).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..kinematics import joint_transform
+from ..model import Robot
+from .buffer import quat_from_matrix
+
+FAULTS = ("camera-future", "odom-gap", "unknown-frame")
+WINDOWS = {"camera-future": (2.0, 3.0), "odom-gap": (4.0, 5.0), "unknown-frame": (6.0, 7.0)}
+NS = 1_000_000_000
+
+
+@dataclass(frozen=True)
+class Plan:
+    rate_hz: float
+    odom: tuple[str, str] | None  # (odom frame, base frame)
+    camera_frame: str | None
+
+
+def plan(robot: Robot) -> Plan:
+    rc = robot.ros2_control
+    rate = float(rc.update_rate) if rc and rc.update_rate else 100.0
+    odom = None
+    for c in rc.controllers if rc else ():
+        if c.type.startswith("diff_drive_controller/") and c.param("enable_odom_tf", True) is not False:
+            odom = (str(c.param("odom_frame_id", "odom")), str(c.param("base_frame_id", "base_link")))
+    camera = next((s.optical_frame or s.link for s in robot.sensors if s.type == "camera"), None)
+    return Plan(rate, odom, camera)
+
+
+def joint_values(robot: Robot, t: float) -> dict[str, float]:
+    """A slow, smooth motion inside every joint's limits."""
+    out = {}
+    for i, j in enumerate(robot.joints):
+        if j.type == "continuous":
+            out[j.name] = 2.0 * t
+        elif (
+            j.type in ("revolute", "prismatic") and j.limit and j.limit.lower is not None and j.limit.upper is not None
+        ):
+            mid, amp = (j.limit.lower + j.limit.upper) / 2, (j.limit.upper - j.limit.lower) / 4
+            out[j.name] = mid + amp * math.sin(0.5 * t + i)
+    return out
+
+
+def write(
+    robot: Robot, out: Path, faults: tuple[str, ...] = (), duration: float = 10.0, storage: str = "mcap"
+) -> dict[str, int]:
+    """Write the recording; returns message counts per topic."""
+    from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    types: dict[str, Any] = dict(ts.types)
+    time_, header_ = types["builtin_interfaces/msg/Time"], types["std_msgs/msg/Header"]
+    vec_, quat_ = types["geometry_msgs/msg/Vector3"], types["geometry_msgs/msg/Quaternion"]
+    transform_, stamped_ = types["geometry_msgs/msg/Transform"], types["geometry_msgs/msg/TransformStamped"]
+    tf_message_, joint_state_ = types["tf2_msgs/msg/TFMessage"], types["sensor_msgs/msg/JointState"]
+    camera_info_, roi_ = types["sensor_msgs/msg/CameraInfo"], types["sensor_msgs/msg/RegionOfInterest"]
+
+    def stamp(ns: int) -> Any:
+        return time_(sec=ns // NS, nanosec=ns % NS)
+
+    def tf(parent: str, child: str, ns: int, m: np.ndarray) -> Any:
+        q = quat_from_matrix(m[:3, :3])
+        return stamped_(
+            header=header_(stamp=stamp(ns), frame_id=parent),
+            child_frame_id=child,
+            transform=transform_(
+                translation=vec_(x=float(m[0, 3]), y=float(m[1, 3]), z=float(m[2, 3])),
+                rotation=quat_(x=q[0], y=q[1], z=q[2], w=q[3]),
+            ),
+        )
+
+    p = plan(robot)
+    latched = Qos(
+        QosHistory.KEEP_LAST,
+        1,
+        QosReliability.RELIABLE,
+        QosDurability.TRANSIENT_LOCAL,
+        QosTime(0, 0),
+        QosTime(0, 0),
+        QosLiveliness.AUTOMATIC,
+        QosTime(0, 0),
+        False,
+    )
+    plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
+    counts: dict[str, int] = {}
+    start = 1_700_000_000 * NS  # a fixed epoch: recordings are reproducible
+    events: list[tuple[int, str, Any, str]] = []
+    fixed = [j for j in robot.joints if j.type == "fixed" and j.parent and j.child]
+    movable = [j for j in robot.joints if j.type in ("revolute", "continuous", "prismatic") and j.parent and j.child]
+    events.append(
+        (
+            start + 1_000_000,
+            "/tf_static",
+            tf_message_(transforms=[tf(j.parent or "", j.child or "", start, joint_transform(j)) for j in fixed]),
+            "tf2_msgs/msg/TFMessage",
+        )
+    )
+    period = int(NS / p.rate_hz)
+    steps = int(duration * p.rate_hz)
+    for k in range(steps):
+        ns = start + k * period
+        t = k / p.rate_hz
+        q = joint_values(robot, t)
+        names = [j.name for j in movable]
+        events.append(
+            (
+                ns + 1_000_000,
+                "/joint_states",
+                joint_state_(
+                    header=header_(stamp=stamp(ns), frame_id=""),
+                    name=names,
+                    position=np.array([q.get(n, 0.0) for n in names]),
+                    velocity=np.zeros(len(names)),
+                    effort=np.zeros(0),
+                ),
+                "sensor_msgs/msg/JointState",
+            )
+        )
+        transforms = [tf(j.parent or "", j.child or "", ns, joint_transform(j, q.get(j.name, 0.0))) for j in movable]
+        in_gap = "odom-gap" in faults and WINDOWS["odom-gap"][0] <= t < WINDOWS["odom-gap"][1]
+        if p.odom is not None and k % 2 == 0 and not in_gap:  # odometry at half the rate, driving a circle
+            m = np.eye(4)
+            m[:2, 3] = (math.sin(0.2 * t), 1 - math.cos(0.2 * t))
+            c, s = math.cos(0.2 * t), math.sin(0.2 * t)
+            m[:2, :2] = ((c, -s), (s, c))
+            transforms.append(tf(p.odom[0], p.odom[1], ns, m))
+        events.append((ns + 2_000_000, "/tf", tf_message_(transforms=transforms), "tf2_msgs/msg/TFMessage"))
+    if p.camera_frame is not None:
+        cam_period = NS // 30
+        for k in range(int(duration * 30)):
+            ns = start + k * cam_period + 5_000_000  # exposure time; arrives 20 ms later
+            t = (ns - start) / NS
+            frame, stamped = p.camera_frame, ns
+            if "camera-future" in faults and WINDOWS["camera-future"][0] <= t < WINDOWS["camera-future"][1]:
+                stamped = ns + 300_000_000
+            if "unknown-frame" in faults and WINDOWS["unknown-frame"][0] <= t < WINDOWS["unknown-frame"][1]:
+                frame = "camera_optical"
+            info = camera_info_(
+                header=header_(stamp=stamp(stamped), frame_id=frame),
+                height=480,
+                width=640,
+                distortion_model="plumb_bob",
+                d=np.zeros(5),
+                k=np.zeros(9),
+                r=np.zeros(9),
+                p=np.zeros(12),
+                binning_x=0,
+                binning_y=0,
+                roi=roi_(x_offset=0, y_offset=0, height=0, width=0, do_rectify=False),
+            )
+            events.append((ns + 20_000_000, "/camera/camera_info", info, "sensor_msgs/msg/CameraInfo"))
+    events.sort(key=lambda e: e[0])
+    with Writer(out, version=9, storage_plugin=plugin) as w:
+        conns = {}
+        for _, topic, _, msgtype in events:
+            if topic not in conns:
+                qos = (latched,) if topic == "/tf_static" else ()
+                conns[topic] = w.add_connection(topic, msgtype, typestore=ts, offered_qos_profiles=qos)
+        for log_ns, topic, msg, msgtype in events:
+            w.write(conns[topic], log_ns, ts.serialize_cdr(msg, msgtype))
+            counts[topic] = counts.get(topic, 0) + 1
+    return counts
