@@ -395,6 +395,19 @@ def _cmd_rules(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def description_options(p: argparse.ArgumentParser) -> None:
+    """The options that say how to read a description someone else wrote."""
+    p.add_argument("--srdf", help="SRDF of the robot")
+    p.add_argument("--controllers", help="controller_manager YAML of the robot")
+    p.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE", help="argument for a Xacro (repeatable)")
+    p.add_argument(
+        "--package-path",
+        action="append",
+        metavar="DIR",
+        help="folder holding ROS packages, for $(find) and package:// (repeatable)",
+    )
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="descgen", description="Robot descriptions from measured specs, proven.")
     p.add_argument("--version", action="version", version=f"descgen {__version__}")
@@ -420,34 +433,20 @@ def parser() -> argparse.ArgumentParser:
 
     a = sub.add_parser("audit", help="audit specs, URDFs or Xacros (with an SRDF and controllers YAML)")
     a.add_argument("path", nargs="+")
-    a.add_argument("--srdf", help="SRDF of the robot")
-    a.add_argument("--controllers", help="controller_manager YAML of the robot")
-    a.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE", help="argument for a Xacro (repeatable)")
-    a.add_argument(
-        "--package-path",
-        action="append",
-        metavar="DIR",
-        help="folder holding ROS packages, for $(find) and package:// (repeatable)",
-    )
+    description_options(a)
     a.add_argument("--format", choices=("text", "json", "sarif"), default="text")
     a.add_argument("--strict", action="store_true", help="warnings count as errors")
     a.set_defaults(fn=_cmd_audit)
 
     f = sub.add_parser("faults", help="plant each fault of the catalogue in a copy and audit it")
     f.add_argument("path")
-    f.add_argument("--srdf")
-    f.add_argument("--controllers")
-    f.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE")
-    f.add_argument("--package-path", action="append", metavar="DIR")
+    description_options(f)
     f.add_argument("--format", choices=("text", "json"), default="text")
     f.set_defaults(fn=_cmd_faults)
 
     fr = sub.add_parser("frames", help="the transform tree with the publisher of every edge")
     fr.add_argument("path")
-    fr.add_argument("--srdf")
-    fr.add_argument("--controllers")
-    fr.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE")
-    fr.add_argument("--package-path", action="append", metavar="DIR")
+    description_options(fr)
     fr.add_argument("--format", choices=("text", "json"), default="text")
     fr.set_defaults(fn=_cmd_frames)
 

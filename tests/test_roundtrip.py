@@ -130,3 +130,16 @@ def test_controllers_yaml_edit_is_reported() -> None:
     )
     [f] = controllers_roundtrip(files, ROBOT, Path("/pkg"))
     assert "diff_drive_controller" in f.message
+
+
+def test_controllers_check_reads_the_written_yaml() -> None:
+    from descgen.checks.controllers import controllers_yaml
+
+    assert controllers_yaml(FILES, ROBOT, Path("/pkg")) == []
+    files = dict(FILES)
+    files["config/ros2_controllers.yaml"] = FILES["config/ros2_controllers.yaml"].replace(
+        "joints: [lift_joint,", "joints: [wrist_joint, lift_joint,").replace(
+        "state_interfaces: [position, velocity]", "state_interfaces: [position, effort]")
+    messages = [f.message for f in controllers_yaml(files, ROBOT, Path("/pkg"))]
+    assert "controller 'arm_controller' joints names 'wrist_joint', not a URDF joint" in messages
+    assert "controller 'arm_controller' reads 'lift_joint/effort', not exported" in messages

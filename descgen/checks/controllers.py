@@ -75,30 +75,22 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
                             loc,
                         )
                     )
-        for joint, iface in claims(c):
-            if joint in urdf_joints and (joint, iface) not in command:
-                out.append(
-                    Finding(
-                        "GEN003",
-                        "error",
-                        f"controller '{name}' claims '{joint}/{iface}', not exported",
-                        "add the command interface in ros2_control",
-                        f"controller:{name}",
-                        loc,
+        for pairs, exported, verb, kind in (
+            (claims(c), command, "claims", "command"),
+            (state_reads(c), state, "reads", "state"),
+        ):
+            for joint, iface in pairs:
+                if joint in urdf_joints and (joint, iface) not in exported:
+                    out.append(
+                        Finding(
+                            "GEN003",
+                            "error",
+                            f"controller '{name}' {verb} '{joint}/{iface}', not exported",
+                            f"add the {kind} interface in ros2_control",
+                            f"controller:{name}",
+                            loc,
+                        )
                     )
-                )
-        for joint, iface in state_reads(c):
-            if joint in urdf_joints and (joint, iface) not in state:
-                out.append(
-                    Finding(
-                        "GEN003",
-                        "error",
-                        f"controller '{name}' reads '{joint}/{iface}', not exported",
-                        "add the state interface in ros2_control",
-                        f"controller:{name}",
-                        loc,
-                    )
-                )
     return out
 
 

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from ... import inertia
 from ...findings import Finding
-from ...model import Robot
+from ...model import Collision, Link, Robot, Visual
 from ..registry import at, rule
 from .density import PLACEHOLDER
 from .inertia import _moving_links
@@ -63,9 +63,17 @@ def collision_visual_size_mismatch(robot: Robot) -> Iterator[Finding]:
             )
 
 
-def _mesh_status(robot: Robot) -> dict[str, str]:
+def _meshes(robot: Robot, state: str) -> Iterator[tuple[Link, Visual | Collision, str]]:
+    """(link, shape, filename) for every mesh the reader resolved to ``state``
+    (ok | missing | escapes | unresolved; see audit/inputs.mesh_status)."""
     status = robot.extras.get("mesh_status")
-    return status if isinstance(status, dict) else {}
+    if not isinstance(status, dict):
+        return
+    for lk in robot.links:
+        for shape in lk.shapes():
+            name = getattr(shape.geometry, "filename", None)
+            if name and status.get(name) == state:
+                yield lk, shape, name
 
 
 @rule("GEOM003", "mesh-file-missing", "error")
@@ -76,18 +84,14 @@ def mesh_file_missing(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     RViz shows nothing and collision checking silently loses the part.
     """
-    status = _mesh_status(robot)
-    for lk in robot.links:
-        for shape in lk.shapes():
-            name = getattr(shape.geometry, "filename", None)
-            if name and status.get(name) == "missing":
-                yield at(
-                    "GEOM003",
-                    shape,
-                    f"link '{lk.name}' mesh '{name}' does not exist",
-                    "fix the path or add the file",
-                    subject=lk.subject,
-                )
+    for lk, shape, name in _meshes(robot, "missing"):
+        yield at(
+            "GEOM003",
+            shape,
+            f"link '{lk.name}' mesh '{name}' does not exist",
+            "fix the path or add the file",
+            subject=lk.subject,
+        )
 
 
 @rule("GEOM004", "mesh-escapes-package", "error")
@@ -98,18 +102,14 @@ def mesh_escapes_package(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     It works on the author's machine only: installed packages cannot reach it.
     """
-    status = _mesh_status(robot)
-    for lk in robot.links:
-        for shape in lk.shapes():
-            name = getattr(shape.geometry, "filename", None)
-            if name and status.get(name) == "escapes":
-                yield at(
-                    "GEOM004",
-                    shape,
-                    f"link '{lk.name}' mesh '{name}' points outside its package",
-                    "use package://<pkg>/<path inside the package>",
-                    subject=lk.subject,
-                )
+    for lk, shape, name in _meshes(robot, "escapes"):
+        yield at(
+            "GEOM004",
+            shape,
+            f"link '{lk.name}' mesh '{name}' points outside its package",
+            "use package://<pkg>/<path inside the package>",
+            subject=lk.subject,
+        )
 
 
 @rule("GEOM005", "mesh-not-resolvable", "warning")
@@ -121,15 +121,11 @@ def mesh_not_resolvable(robot: Robot) -> Iterator[Finding]:
     resource_retriever fails the same way on the robot: the part is invisible and has no
     collision shape. (Give --package-path to check the file itself.)
     """
-    status = _mesh_status(robot)
-    for lk in robot.links:
-        for shape in lk.shapes():
-            name = getattr(shape.geometry, "filename", None)
-            if name and status.get(name) == "unresolved":
-                yield at(
-                    "GEOM005",
-                    shape,
-                    f"link '{lk.name}' mesh '{name}' names a package that cannot be found",
-                    "fix the package name, or pass --package-path",
-                    subject=lk.subject,
-                )
+    for lk, shape, name in _meshes(robot, "unresolved"):
+        yield at(
+            "GEOM005",
+            shape,
+            f"link '{lk.name}' mesh '{name}' names a package that cannot be found",
+            "fix the package name, or pass --package-path",
+            subject=lk.subject,
+        )
