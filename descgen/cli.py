@@ -361,6 +361,51 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _cmd_control(args: argparse.Namespace) -> int:
+    from .control.run import read_trajectory, run, write_evidence
+    from .control.system import Plant
+    from .generate import default_out
+    from .render.context import package_name
+    from .spec import load_spec
+
+    spec = Path(args.spec)
+    robot = load_spec(spec).robot
+    package = default_out(spec) / package_name(robot)
+    if not (package / "config" / "ros2_controllers.yaml").is_file():
+        raise InputError(
+            [
+                Finding(
+                    "CTRL021",
+                    "error",
+                    f"{package} has no generated controllers file",
+                    "run descgen generate first",
+                    "file",
+                    Where(str(package)),
+                )
+            ]
+        )
+    trajectory = read_trajectory(Path(args.trajectory), robot)
+    faults = dict(item.split(":=", 1) for item in args.plant_fault or [])
+    plant = Plant(args.plant, faults=faults, noise=0.0)
+    duration = float(args.duration) if args.duration else None
+    out = run(package, robot, trajectory, duration, plant)
+    folder = Path(args.out) if args.out else package / "evidence"
+    written = write_evidence(out, folder, robot)
+    verdict = out.verdict()
+    print(f"wrote {', '.join(written)} to {folder}")
+    for joint, err in verdict["tracking"].items():
+        tol = verdict["tolerance"][joint]
+        print(
+            f"  {joint:<22} max |desired - measured| {err:.6g} (tolerance {tol:.6g}) {'ok' if err <= tol else 'FAILED'}"
+        )
+    for e in verdict["rejected"]:
+        print(
+            f"  rejected {e['joint']}/{e['interface']} = {e['value']:.6g} beyond {e['limit']:.6g} at {e['time']:.2f} s"
+        )
+    sys.stderr.write(report.text(out.findings()))
+    return EXIT_OK if verdict["ok"] else EXIT_FAILED
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -466,6 +511,15 @@ def parser() -> argparse.ArgumentParser:
     sc.add_argument("--duration", default="10", help="seconds")
     sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
     sc.set_defaults(fn=_cmd_tf_scenario)
+
+    co = sub.add_parser("control", help="run a trajectory through a model of ros2_control (lifecycle, claims, loop)")
+    co.add_argument("spec")
+    co.add_argument("--trajectory", required=True)
+    co.add_argument("--duration", help="seconds (default: the trajectory plus 1 s)")
+    co.add_argument("--plant", choices=("mock", "sim"), default="mock")
+    co.add_argument("--plant-fault", action="append", metavar="JOINT:=stuck|offset|reversed")
+    co.add_argument("--out", help="folder for the evidence (default: the package's evidence/)")
+    co.set_defaults(fn=_cmd_control)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

@@ -359,6 +359,26 @@ def desired_on_joint_states(robot: Robot) -> Planted:
     )
 
 
+def broadcaster_on_commands(robot: Robot) -> Planted:
+    rc = _with_control(robot)
+    movable = [j.name for j in robot.joints if j.type in ("revolute", "continuous", "prismatic")]
+    if not movable:
+        return None
+    joints = rc.joints or (ControlJoint(movable[0], (Interface("position"),), (Interface("position"),)),)
+    first = joints[0]
+    wired = replace(first, command=(*first.command, Interface("desired_position")))
+    jsb = next((c for c in rc.controllers if c.type.startswith("joint_state_broadcaster/")), None)
+    mapping = (("map_interface_to_joint_state", (("position", "desired_position"),)),)
+    if jsb is None:
+        jsb = Controller("joint_state_broadcaster", "joint_state_broadcaster/JointStateBroadcaster", mapping)
+        controllers = (*rc.controllers, jsb)
+    else:
+        controllers = tuple(replace(c, params=(*c.params, *mapping)) if c is jsb else c for c in rc.controllers)
+    return replace(robot, ros2_control=replace(rc, joints=(wired, *joints[1:]), controllers=controllers)), (
+        f"joint_state_broadcaster mapped to the command interface '{first.name}/desired_position'"
+    )
+
+
 CATALOGUE: tuple[Fault, ...] = (
     Fault("origin-x1000", "a joint origin written in millimetres as metres", ("UNIT011", "POSE010"), origin_x1000),
     Fault(
@@ -404,6 +424,12 @@ CATALOGUE: tuple[Fault, ...] = (
     ),
     Fault(
         "desired-on-joint-states", "desired commands published on /joint_states", ("FRAME005",), desired_on_joint_states
+    ),
+    Fault(
+        "broadcaster-on-commands",
+        "joint_state_broadcaster fed from a command interface",
+        ("CTRL010",),
+        broadcaster_on_commands,
     ),
 )
 

@@ -307,3 +307,35 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
                         "fix the joint name",
                         subject=f"controller:{c.name}",
                     )
+
+
+@rule("CTRL010", "broadcaster-fed-from-commands", "error")
+def broadcaster_fed_from_commands(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a joint_state_broadcaster whose `interfaces` or `map_interface_to_joint_state`
+    names an interface the hardware exports only as a command interface.
+    ## Why is this bad?
+    /joint_states then carries what was commanded, robot_state_publisher turns it into tf,
+    and the operator display animates commands as if they were measured motion.
+    """
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    commands = {i.name for cj in rc.joints for i in cj.command}
+    states = {i.name for cj in rc.joints for i in cj.state}
+    for c in rc.controllers:
+        if not c.type.startswith("joint_state_broadcaster/"):
+            continue
+        named = [str(x) for x in _list(c.param("interfaces"))]
+        mapping = c.param("map_interface_to_joint_state")
+        if isinstance(mapping, tuple):
+            named += [str(v) for _, v in mapping]
+        for iface in named:
+            if iface in commands and iface not in states:
+                yield at(
+                    "CTRL010",
+                    c,
+                    f"'{c.name}' publishes '{iface}', which the hardware exports only as a command interface",
+                    "broadcast state interfaces only; publish desired values on their own topic",
+                    subject=f"controller:{c.name}",
+                )

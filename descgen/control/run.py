@@ -1,0 +1,377 @@
+"""``descgen control``: load the generated ros2_control files, run a trajectory through the
+read-update-write loop, and write what happened at the command/state boundary."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .. import units
+from ..findings import Finding, InputError
+from ..model import Robot
+from ..readers.controllers import read_controllers_text
+from ..readers.urdf import read_urdf_text
+from ..readers.xacro_file import expand
+from ..yamlsource import load
+from .manager import ControllerManager, JointTrajectoryController, Point
+from .system import Hardware, JointHw, Plant, Trace
+
+DEFAULT_TOLERANCE = {"prismatic": 0.01, "other": math.radians(3)}
+
+
+@dataclass
+class Trajectory:
+    controller: str
+    joints: list[str]
+    points: list[Point]
+
+
+def read_trajectory(path: Path, robot: Robot) -> Trajectory:
+    doc = load(path)
+    data = doc.data
+    problems: list[Finding] = []
+
+    def bad(where: tuple[str | int, ...], message: str, hint: str) -> None:
+        problems.append(Finding("CTRL020", "error", message, hint, "trajectory", doc.where(where)))
+
+    if not isinstance(data, dict):
+        raise InputError(
+            [
+                Finding(
+                    "CTRL020",
+                    "error",
+                    "a trajectory is a mapping (controller, joints, points)",
+                    "see the README",
+                    "trajectory",
+                    doc.where(()),
+                )
+            ]
+        )
+    joints = [str(j) for j in data.get("joints", [])]
+    for i, name in enumerate(joints):
+        if robot.joint(name) is None:
+            bad(("joints", i), f"unknown joint '{name}'", "name a joint of the robot")
+    points = []
+    for i, p in enumerate(data.get("points", []) or []):
+        try:
+            t = units.to_si(p.get("time_from_start"), "time")
+        except (units.QuantityError, AttributeError) as exc:
+            bad(("points", i), f"time_from_start: {getattr(exc, 'message', exc)}", 'write e.g. "2 s"')
+            continue
+        values = []
+        for k, (name, raw) in enumerate(zip(joints, p.get("positions", []), strict=False)):
+            j = robot.joint(name)
+            kind = "length" if j is not None and j.type == "prismatic" else "angle"
+            try:
+                values.append(units.to_si(raw, kind))
+            except units.QuantityError as exc:
+                bad(("points", i, "positions", k), exc.message, exc.hint)
+        if len(p.get("positions", [])) != len(joints):
+            bad(
+                ("points", i, "positions"),
+                f"{len(p.get('positions', []))} positions for {len(joints)} joints",
+                "give one position per joint",
+            )
+        points.append(Point(t, tuple(values)))
+    if problems:
+        raise InputError(problems)
+    return Trajectory(str(data.get("controller", "")), joints, points)
+
+
+@dataclass
+class Outcome:
+    cm: ControllerManager
+    rows: list[tuple[float, str, float, float, float]] = field(default_factory=list)  # t, joint, desired, cmd, meas
+    tracking: dict[str, float] = field(default_factory=dict)
+    tolerance: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def echo(self) -> bool:
+        return self.cm.hardware.echoes_commands
+
+    def findings(self) -> list[Finding]:
+        """What the run showed at the command/state boundary, as findings."""
+        out = []
+        for j, e in self.tracking.items():
+            if e > self.tolerance[j]:
+                out.append(
+                    Finding(
+                        "CTRL011",
+                        "error",
+                        f"joint '{j}' tracking error reached {e:.4g} (tolerance "
+                        f"{self.tolerance[j]:.4g}): the measured state does not follow the command",
+                        "check the joint's direction, encoder offset and whether it moves at all",
+                        f"joint:{j}",
+                    )
+                )
+        for ev in self.cm.rejected[:1]:
+            out.append(
+                Finding(
+                    "CTRL012",
+                    "error",
+                    f"{len(self.cm.rejected)} command(s) rejected by limits; first: "
+                    f"{ev.joint}/{ev.interface} = {ev.value:.6g} beyond {ev.limit:.6g} at {ev.time:.2f} s",
+                    "keep the trajectory inside the joint limits",
+                    f"joint:{ev.joint}",
+                )
+            )
+        for n, c in self.cm.controllers.items():
+            if c.state != "active":
+                out.append(
+                    Finding(
+                        "CTRL013",
+                        "error",
+                        f"controller '{n}' never became active (state {c.state})",
+                        "see lifecycle.md for the failed transition or claim",
+                        f"controller:{n}",
+                    )
+                )
+        if self.echo:
+            out.append(
+                Finding(
+                    "CTRL014",
+                    "info",
+                    "the measured state is the mock hardware echoing the command",
+                    "this run does not verify motion; use --plant sim or real hardware",
+                    "hardware",
+                )
+            )
+        return out
+
+    def verdict(self) -> dict[str, Any]:
+        failed = [j for j, e in self.tracking.items() if e > self.tolerance[j]]
+        inactive = [n for n, c in self.cm.controllers.items() if c.state != "active"]
+        return {
+            "rejected": [
+                {"joint": e.joint, "interface": e.interface, "time": e.time, "value": e.value, "limit": e.limit}
+                for e in self.cm.rejected
+            ],
+            "clipped": [
+                {
+                    "joint": e.joint,
+                    "interface": e.interface,
+                    "time": e.time,
+                    "proposed": e.value,
+                    "applied": e.applied,
+                    "limit": e.limit,
+                }
+                for e in self.cm.clipped
+            ],
+            "tracking": self.tracking,
+            "tolerance": self.tolerance,
+            "tracking_failed": failed,
+            "controllers_not_active": inactive,
+            "state_echoes_command": self.echo,
+            "note": (
+                "the 'measured' state is mock_components/GenericSystem mirroring the command: this is not "
+                "verified motion"
+            )
+            if self.echo
+            else "measured state comes from the simulated plant",
+            "ok": not failed and not self.cm.rejected and not inactive,
+            "findings": [f.as_dict() for f in self.findings()],
+        }
+
+
+def load_system(package: Path, robot: Robot, plant: Plant) -> ControllerManager:
+    """The hardware and controllers as the generated files describe them."""
+    xacro = package / "urdf" / f"{robot.name}.ros2_control.xacro"
+    model, _ = read_urdf_text(expand(xacro, str(xacro)), str(xacro))
+    rc = model.ros2_control
+    if rc is None:
+        raise InputError(
+            [Finding("CTRL021", "error", f"{xacro} has no <ros2_control> block", "generate first", "file")]
+        )
+    controllers, rate, _ = read_controllers_text(
+        (package / "config" / "ros2_controllers.yaml").read_text(), str(package / "config" / "ros2_controllers.yaml")
+    )
+    trace = Trace()
+    policies = {cj.name: cj.on_limit for cj in robot.ros2_control.joints} if robot.ros2_control else {}
+    joints = []
+    for cj in rc.joints:
+        joints.append(
+            JointHw(
+                cj.name,
+                {i.name: math.nan for i in cj.command},
+                {i.name: math.nan if i.initial_value is None else i.initial_value for i in cj.state},
+                {i.name: (i.min, i.max) for i in cj.command},
+                policies.get(cj.name, "reject"),
+            )
+        )
+    hw = Hardware(rc.name, rc.plugin, dict(rc.params), joints, trace, plant)
+    for j in robot.joints:
+        if j.limit is not None and j.limit.velocity:
+            hw.vel_limit[j.name] = abs(j.limit.velocity)
+    cm = ControllerManager(hw, rate or 100.0, trace)
+    cm.start_hardware()
+    for c in controllers:
+        cm.spawn(c.name, c.type, {k: _plain(v) for k, v in c.params})
+    return cm
+
+
+def _plain(v: object) -> object:
+    if isinstance(v, tuple) and v and all(isinstance(x, tuple) and len(x) == 2 for x in v):
+        return {str(k): _plain(x) for k, x in v}
+    if isinstance(v, tuple):
+        return [_plain(x) for x in v]
+    return v
+
+
+def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | None, plant: Plant) -> Outcome:
+    cm = load_system(package, robot, plant)
+    jtc = cm.controllers.get(trajectory.controller)
+    if not isinstance(jtc, JointTrajectoryController):
+        raise InputError(
+            [
+                Finding(
+                    "CTRL022",
+                    "error",
+                    f"no joint_trajectory_controller named '{trajectory.controller}' in the controllers file",
+                    "name the arm's controller",
+                    "trajectory",
+                )
+            ]
+        )
+    end = duration if duration is not None else (trajectory.points[-1].time + 1.0 if trajectory.points else 1.0)
+    dt = 1.0 / cm.update_rate
+    # the goal is given in the trajectory's joint order; the controller has its own
+    order = {n: i for i, n in enumerate(trajectory.joints)}
+    points = [
+        Point(p.time, tuple(p.positions[order[j]] if j in order else math.nan for j in jtc.joints))
+        for p in trajectory.points
+    ]
+    cm.step(0.0)  # one cycle so the controller sees measured state before the goal arrives
+    jtc.follow(points, 0.0)
+    out = Outcome(cm)
+    kinds = {j.name: j.type for j in robot.joints}
+    for name in jtc.joints:
+        out.tracking[name] = 0.0
+        out.tolerance[name] = DEFAULT_TOLERANCE["prismatic" if kinds.get(name) == "prismatic" else "other"]
+    for k in range(1, round(end * cm.update_rate) + 1):
+        t = k * dt
+        cm.step(t)
+        for name in jtc.joints:
+            desired = jtc.desired.get(name, math.nan)
+            commanded = cm.by_name[name].commands.get("position", math.nan)
+            measured = cm.state(name, "position")
+            out.rows.append((t, name, desired, commanded, measured))
+            if not math.isnan(desired) and not math.isnan(measured):
+                out.tracking[name] = max(out.tracking[name], abs(desired - measured))
+    return out
+
+
+def write_evidence(out: Outcome, folder: Path, robot: Robot) -> list[str]:
+    """lifecycle.jsonl/.md, interfaces.md, desired_vs_measured.csv, plots, MCAP, verdict.json."""
+    folder.mkdir(parents=True, exist_ok=True)
+    cm = out.cm
+    written = []
+
+    def put(name: str, text: str) -> None:
+        (folder / name).write_text(text, encoding="utf-8")
+        written.append(name)
+
+    put("lifecycle.jsonl", "".join(json.dumps(e, sort_keys=True) + "\n" for e in cm.trace.events))
+    lines = [
+        "# ros2_control lifecycle and claims, in order",
+        "",
+        "| t (s) | event | who | detail |",
+        "|---|---|---|---|",
+    ]
+    for e in cm.trace.events:
+        who = e.get("name") or e.get("controller") or e.get("joint", "")
+        detail = ", ".join(f"{k}={v}" for k, v in e.items() if k not in ("t", "event", "name", "controller", "kind"))
+        lines.append(f"| {e['t']:.2f} | {e['event']} | {who} | {detail} |")
+    put("lifecycle.md", "\n".join(lines) + "\n")
+    cmds = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.commands]
+    states = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.states]
+    text = [
+        "# Interfaces and controllers (as `ros2 control list_hardware_interfaces` / `list_controllers`)",
+        "",
+        "```",
+        "command interfaces",
+    ]
+    text += [f"\t{k} [available] [{'claimed' if k in cm.resources.owner else 'unclaimed'}]" for k in cmds]
+    text += ["state interfaces"] + [f"\t{k}" for k in states] + ["```", "", "```"]
+    text += [f"{n:<26} {c.type:<55} {c.state}" for n, c in cm.controllers.items()] + ["```", ""]
+    put("interfaces.md", "\n".join(text))
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["time_s", "joint", "desired", "commanded", "measured", "error"])
+    for t, name, d, c, m in out.rows:
+        w.writerow([f"{t:.3f}", name, f"{d:.9g}", f"{c:.9g}", f"{m:.9g}", f"{d - m:.9g}"])
+    put("desired_vs_measured.csv", buf.getvalue())
+    put("verdict.json", json.dumps(out.verdict(), indent=2) + "\n")
+    written += _plots(out, folder)
+    written += _recording(out, folder)
+    return written
+
+
+def _plots(out: Outcome, folder: Path) -> list[str]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return []
+    names = []
+    for joint in out.tracking:
+        rows = [r for r in out.rows if r[1] == joint]
+        fig, ax = plt.subplots(figsize=(7, 3.2))
+        ax.plot([r[0] for r in rows], [r[2] for r in rows], label="desired (controller)")
+        ax.plot([r[0] for r in rows], [r[3] for r in rows], "--", label="commanded (after limits)")
+        ax.plot([r[0] for r in rows], [r[4] for r in rows], label="measured (state interface)")
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("position (SI: m or rad)")
+        ax.set_title(f"{joint}: " + ("state echoes the command (mock)" if out.echo else "simulated plant"))
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        name = f"{joint}.png"
+        fig.savefig(folder / name, dpi=80)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
+def _recording(out: Outcome, folder: Path) -> list[str]:
+    import shutil
+
+    import numpy as np
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    types: dict[str, Any] = dict(ts.types)
+    js, header, time_ = (
+        types["sensor_msgs/msg/JointState"],
+        types["std_msgs/msg/Header"],
+        types["builtin_interfaces/msg/Time"],
+    )
+    bag = folder / "control_run"
+    shutil.rmtree(bag, ignore_errors=True)
+    start = 1_700_000_000 * 1_000_000_000
+    by_time: dict[float, list[tuple[str, float, float]]] = {}
+    for t, name, d, _, m in out.rows:
+        by_time.setdefault(t, []).append((name, d, m))
+    with Writer(bag, version=9, storage_plugin=StoragePlugin.MCAP) as w:
+        measured = w.add_connection("/joint_states", "sensor_msgs/msg/JointState", typestore=ts)
+        desired = w.add_connection("/arm_controller/desired_state", "sensor_msgs/msg/JointState", typestore=ts)
+        for t, entries in sorted(by_time.items()):
+            ns = start + round(t * 1e9)
+            stamp = time_(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+            names = [e[0] for e in entries]
+            for conn, values in ((measured, [e[2] for e in entries]), (desired, [e[1] for e in entries])):
+                msg = js(
+                    header=header(stamp=stamp, frame_id=""),
+                    name=names,
+                    position=np.array(values),
+                    velocity=np.zeros(0),
+                    effort=np.zeros(0),
+                )
+                w.write(conn, ns, ts.serialize_cdr(msg, "sensor_msgs/msg/JointState"))
+    return ["control_run/"]

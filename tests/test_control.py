@@ -1,0 +1,179 @@
+"""The command/state boundary: lifecycle and claims as Jazzy documents them, limits, and
+tracking that tells an echo from verified motion."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from descgen.control.run import load_system, read_trajectory, run
+from descgen.control.system import Plant
+from descgen.generate import generate
+from descgen.spec import load_spec
+
+from .conftest import EXAMPLE, ROOT
+from .helpers import plant
+
+ROBOT = load_spec(EXAMPLE).robot
+PACKAGE = ROOT / "generated" / "warehouse_arm_description"
+READY = ROOT / "specs" / "trajectories" / "ready.yaml"
+
+
+def transitions(cm):  # type: ignore[no-untyped-def]
+    return [(e["name"], e["callback"], e["state"]) for e in cm.trace.events if e["event"] == "transition"]
+
+
+def test_lifecycle_order_and_claims_follow_jazzy() -> None:
+    cm = load_system(PACKAGE, ROBOT, Plant())
+    # hardware_components_initial_state unset: the component is initialised, configured and
+    # activated at startup; then the spawner loads (on_init), configures and activates each
+    # controller in turn (reference/ros2_control.md, spawner.py)
+    expected = [
+        ("WarehouseArmSystem", "on_init", "unconfigured"),
+        ("WarehouseArmSystem", "on_configure", "inactive"),
+        ("WarehouseArmSystem", "on_activate", "active"),
+    ]
+    for c in ("joint_state_broadcaster", "diff_drive_controller", "arm_controller"):
+        expected += [(c, "on_init", "unconfigured"), (c, "on_configure", "inactive"), (c, "on_activate", "active")]
+    assert transitions(cm) == expected
+    claims = [(e["controller"], e["interface"]) for e in cm.trace.events if e["event"] == "claim"]
+    assert claims == [
+        ("diff_drive_controller", "left_wheel_joint/velocity"),
+        ("diff_drive_controller", "right_wheel_joint/velocity"),
+        ("arm_controller", "lift_joint/position"),
+        ("arm_controller", "shoulder_pan_joint/position"),
+        ("arm_controller", "shoulder_lift_joint/position"),
+        ("arm_controller", "elbow_joint/position"),
+    ]
+    # a second controller claiming the same interfaces fails with tf2-like reasons, and gets nothing
+    arm = cm.controllers["arm_controller"]
+    second = cm.spawn("arm_controller_2", arm.type, dict(arm.params))
+    assert second.state == "inactive"
+    failure = [e for e in cm.trace.events if e.get("controller") == "arm_controller_2"]
+    assert "Command interface with key 'lift_joint/position' is already claimed" in failure[0]["detail"]
+    assert any("Resource conflict for controller 'arm_controller_2'" in e.get("detail", "") for e in failure)
+    assert all(owner != "arm_controller_2" for owner in cm.resources.owner.values())
+    # deactivating releases, and then the other controller can activate
+    cm.deactivate("arm_controller")
+    assert cm.activate("arm_controller_2") and cm.controllers["arm_controller_2"].state == "active"
+
+
+def test_loop_reads_before_update_before_write() -> None:
+    cm = load_system(PACKAGE, ROBOT, Plant())
+    traj = read_trajectory(READY, ROBOT)
+    out = run(PACKAGE, ROBOT, traj, 0.5, Plant())
+    rows = [r for r in out.rows if r[1] == "elbow_joint"]
+    # mock hardware mirrors in read(): the state seen in a cycle is the command of the one before
+    for (_, _, _, c_prev, _), (_, _, _, _, m_next) in itertools.pairwise(rows):
+        assert m_next == pytest.approx(c_prev)
+    assert cm.update_rate == 100
+
+
+def test_mock_is_labelled_an_echo_and_sim_is_not() -> None:
+    traj = read_trajectory(READY, ROBOT)
+    mock = run(PACKAGE, ROBOT, traj, None, Plant("mock"))
+    assert mock.echo and mock.verdict()["state_echoes_command"] and "not verified motion" in mock.verdict()["note"]
+    sim = run(PACKAGE, ROBOT, traj, None, Plant("sim"))
+    assert not sim.echo and sim.verdict()["ok"]
+    # the sim plant tracks through the ready pose: elbow at -90 deg after 3 s
+    at_ready = next(r for r in sim.rows if r[1] == "elbow_joint" and abs(r[0] - 3.0) < 1e-9)
+    assert at_ready[4] == pytest.approx(-math.pi / 2, abs=0.01)
+
+
+@pytest.mark.parametrize("fault", ["reversed", "stuck"])
+def test_plant_faults_fail_the_tracking_verdict(fault: str) -> None:
+    traj = read_trajectory(READY, ROBOT)
+    out = run(PACKAGE, ROBOT, traj, None, Plant("sim", faults={"elbow_joint": fault}))
+    v = out.verdict()
+    assert not v["ok"] and v["tracking_failed"] == ["elbow_joint"]
+    assert v["tracking"]["elbow_joint"] > math.radians(80)
+
+
+def _variant(tmp: Path, policy: str) -> tuple[Path, Path]:
+    text = plant("lower: -150 deg, upper: 150 deg", "lower: -1 rad, upper: 1 rad")
+    text = plant(
+        "{name: elbow_joint, command: [position], state: [position, velocity], on_limit: reject",
+        f"{{name: elbow_joint, command: [position], state: [position, velocity], on_limit: {policy}",
+        text,
+    )
+    # the known pose at -90 deg no longer fits a 1 rad limit: drop the poses that use the elbow
+    text = text.split("known_poses:")[0] + "known_poses: []\n"
+    text = text.replace(
+        "    - {name: zero, group: arm, pose: zero}\n    - {name: ready, group: arm, pose: ready}\n",
+        "    - {name: zero, group: arm, joints: {lift_joint: {value: 0 mm, source: test}}}\n",
+    )
+    (tmp / "specs").mkdir()
+    spec = tmp / "specs" / "warehouse_arm.yaml"
+    spec.write_text(text)
+    outcome = generate(spec)
+    assert not outcome.failed, outcome.findings
+    traj = tmp / "t.yaml"
+    traj.write_text(
+        "controller: arm_controller\njoints: [elbow_joint]\n"
+        'points:\n  - {time_from_start: "1 s", positions: ["1.2 rad"]}\n'
+    )
+    return spec, traj
+
+
+@pytest.mark.parametrize("policy", ["reject", "clip"])
+def test_command_beyond_limit_rejected_or_clipped(tmp_path: Path, policy: str) -> None:
+    spec, traj = _variant(tmp_path, policy)
+    robot = load_spec(spec).robot
+    package = tmp_path / "generated" / "warehouse_arm_description"
+    out = run(package, robot, read_trajectory(traj, robot), 1.5, Plant("mock"))
+    v = out.verdict()
+    final = [r for r in out.rows if r[1] == "elbow_joint"][-1]
+    if policy == "reject":
+        assert v["rejected"] and not v["clipped"] and not v["ok"]
+        first = v["rejected"][0]
+        assert first["joint"] == "elbow_joint" and first["limit"] == pytest.approx(1.0) and first["value"] > 1.0
+        assert final[3] <= 1.0 + 1e-12  # the hardware kept the last accepted command
+    else:
+        assert v["clipped"] and not v["rejected"]
+        last = v["clipped"][-1]
+        assert last["proposed"] == pytest.approx(1.2) and last["applied"] == pytest.approx(1.0)
+        assert final[3] == pytest.approx(1.0)
+
+
+def test_control_cli_writes_every_file(tmp_path: Path) -> None:
+    out = tmp_path / "evidence"
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "descgen",
+            "control",
+            "specs/warehouse_arm.yaml",
+            "--trajectory",
+            str(READY),
+            "--out",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=300,
+    )
+    assert r.returncode == 0, r.stderr
+    for name in (
+        "lifecycle.jsonl",
+        "lifecycle.md",
+        "interfaces.md",
+        "desired_vs_measured.csv",
+        "verdict.json",
+        "elbow_joint.png",
+    ):
+        assert (out / name).is_file(), name
+    assert next((out / "control_run").glob("*.mcap")).stat().st_size > 0
+    verdict = json.loads((out / "verdict.json").read_text())
+    assert {"rejected", "clipped", "tracking", "state_echoes_command"} <= set(verdict)
+    assert verdict["state_echoes_command"] is True
+    header = (out / "desired_vs_measured.csv").read_text().splitlines()[0]
+    assert header == "time_s,joint,desired,commanded,measured,error"
+    assert "\tlift_joint/position [available] [claimed]" in (out / "interfaces.md").read_text()
