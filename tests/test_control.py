@@ -177,3 +177,14 @@ def test_control_cli_writes_every_file(tmp_path: Path) -> None:
     header = (out / "desired_vs_measured.csv").read_text().splitlines()[0]
     assert header == "time_s,joint,desired,commanded,measured,error"
     assert "\tlift_joint/position [available] [claimed]" in (out / "interfaces.md").read_text()
+
+
+def test_infinite_command_takes_the_error_path() -> None:
+    # GenericSystem: an infinite command makes read() return ERROR -> on_error -> unconfigured
+    cm = load_system(PACKAGE, ROBOT, Plant())
+    cm.by_name["elbow_joint"].commands["position"] = math.inf
+    cm.step(0.01)
+    assert cm.hardware.state == "unconfigured"
+    errors = [e for e in cm.trace.events if e["event"] == "error"]
+    assert errors and "infinite command on elbow_joint" in errors[0]["detail"]
+    assert transitions(cm)[-1] == ("WarehouseArmSystem", "on_error", "unconfigured")
