@@ -211,19 +211,9 @@ def second_parent(robot: Robot) -> Planted:
     return replace(robot, joints=(*robot.joints, extra)), f"added a second parent joint to {targets[-1]}"
 
 
-def _descendants(robot: Robot, link: str) -> list[str]:
-    out, todo = [], [link]
-    while todo:
-        for j in robot.child_joints(todo.pop()):
-            if j.child and j.child not in out:
-                out.append(j.child)
-                todo.append(j.child)
-    return out
-
-
 def cycle(robot: Robot) -> Planted:
     for j in robot.joints:
-        below = _descendants(robot, j.child) if j.child else []
+        below = robot.descendants(j.child) if j.child else []
         if below:
             return _swap_joint(
                 robot, j, replace(j, parent=below[-1])
@@ -240,7 +230,7 @@ def dangling_joint(robot: Robot) -> Planted:
 
 def second_root(robot: Robot) -> Planted:
     for j in robot.joints:
-        if j.child and _descendants(robot, j.child):
+        if j.child and robot.descendants(j.child):
             return replace(robot, joints=tuple(x for x in robot.joints if x is not j)), (
                 f"joint {j.name} removed: {j.child} starts a second tree"
             )

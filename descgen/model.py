@@ -457,6 +457,19 @@ class Robot:
         roots = self.roots()
         return roots[0] if len(roots) == 1 else None
 
+    def descendants(self, link: str) -> list[str]:
+        """Every link below ``link``, nearest first; safe on cycles."""
+        out: list[str] = []
+        seen: set[str] = {link}
+        todo = [link]
+        while todo:
+            for j in self.child_joints(todo.pop(0)):
+                if j.child and j.child not in seen:
+                    seen.add(j.child)
+                    out.append(j.child)
+                    todo.append(j.child)
+        return out
+
     def chain_joints(self, base: str, tip: str) -> list[Joint]:
         """Joints from ``base`` down to ``tip`` (empty if ``base`` is not above ``tip``)."""
         path = self.path_to_root(tip)

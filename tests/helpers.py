@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 from descgen.findings import Finding, InputError
@@ -30,3 +32,10 @@ def errors_of(text: str, tmp_path: Path, name: str = "robot.yaml") -> list[Findi
     except InputError as exc:
         return list(exc.findings)
     return []
+
+
+def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
+    """The descgen command in a subprocess, as a user runs it."""
+    return subprocess.run(
+        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd, timeout=300
+    )

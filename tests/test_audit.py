@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import subprocess
-import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -33,14 +31,11 @@ from descgen.model import (
 from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, ROOT
+from .helpers import run_cli
 
 PKG = ROOT / "generated" / "warehouse_arm_description"
 
 
-def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd, timeout=300
-    )
 
 
 def test_generated_package_audits_clean() -> None:

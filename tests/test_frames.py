@@ -14,6 +14,7 @@ from descgen.model import ExternalFrame, Joint, JointStateSource
 from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, ROOT, require_tool
+from .helpers import run_cli
 
 ROBOT = load_spec(EXAMPLE).robot
 EVIDENCE = ROOT / "generated" / "warehouse_arm_description" / "evidence"
@@ -130,15 +131,8 @@ def test_second_joint_states_publisher(kind: str) -> None:
 
 def test_frames_cli() -> None:
     import json
-    import sys
 
-    r = subprocess.run(
-        [sys.executable, "-m", "descgen", "frames", "specs/warehouse_arm.yaml", "--format", "json"],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        timeout=120,
-    )
+    r = run_cli("frames", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     doc = json.loads(r.stdout)
     assert len(doc["frames"]) == 14 and doc["summary"]["error"] == 0

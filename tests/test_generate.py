@@ -8,7 +8,6 @@ import math
 import py_compile
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -19,7 +18,7 @@ from descgen import checks
 from descgen.generate import check, generate
 
 from .conftest import ROOT, require_tool
-from .helpers import EXAMPLE_TEXT, plant
+from .helpers import EXAMPLE_TEXT, plant, run_cli
 
 PKG = "warehouse_arm_description"
 
@@ -41,10 +40,6 @@ def snapshot(folder: Path) -> dict[str, str]:
     }
 
 
-def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd, timeout=300
-    )
 
 
 @pytest.fixture

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +17,7 @@ from descgen.render import render_package
 from descgen.spec import load_spec, load_spec_text
 
 from .conftest import EXAMPLE, ROOT
-from .helpers import EXAMPLE_TEXT, plant
+from .helpers import EXAMPLE_TEXT, plant, run_cli
 
 pin = pytest.importorskip("pinocchio")
 
@@ -162,13 +160,7 @@ def test_measured_poses_pass() -> None:
 
 
 def test_poses_cli() -> None:
-    r = subprocess.run(
-        [sys.executable, "-m", "descgen", "poses", "specs/warehouse_arm.yaml", "--format", "json"],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        timeout=120,
-    )
+    r = run_cli("poses", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     import json
 

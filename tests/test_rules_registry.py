@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import inspect
 import re
-import subprocess
-import sys
 from collections.abc import Iterable, Iterator
 
 import pytest
@@ -14,16 +12,12 @@ from descgen.audit import RULES, iter_rules, registry
 from descgen.findings import SEVERITIES, Finding
 from descgen.model import Robot
 
-from .helpers import ROOT
+from .helpers import run_cli
 
 CODE = re.compile(rf"^(?:{'|'.join(registry.CATEGORIES)})\d{{3}}$")
 ALL = list(iter_rules())
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, timeout=60, cwd=ROOT
-    )
 
 
 def test_there_are_rules() -> None:

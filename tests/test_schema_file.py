@@ -4,12 +4,10 @@ from __future__ import annotations
 
 import json
 import re
-import subprocess
-import sys
 
 from descgen.spec.schema import json_schema
 
-from .helpers import ROOT
+from .helpers import ROOT, run_cli
 
 SCHEMA_FILE = ROOT / "specs" / "descgen-spec.schema.json"
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
@@ -17,9 +15,7 @@ MODELINE = re.compile(r"^#\s*yaml-language-server:\s*\$schema=(?P<target>\S+)\s*
 
 
 def test_cli_schema_equals_the_committed_file() -> None:
-    r = subprocess.run(
-        [sys.executable, "-m", "descgen", "schema"], capture_output=True, text=True, timeout=60, cwd=ROOT
-    )
+    r = run_cli("schema")
     assert r.returncode == 0, r.stderr
     printed = json.loads(r.stdout)
     committed = json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))

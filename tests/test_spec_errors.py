@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from .helpers import EXAMPLE_TEXT, errors_of, line_of, plant
+from .helpers import EXAMPLE_TEXT, errors_of, line_of, plant, run_cli
 
 CASES = [
     # (id, old, new, expected code, text marking the expected line)
@@ -136,8 +134,6 @@ def test_plausibility_override_accepts_a_big_robot(tmp_path: Path) -> None:
     assert any("elbow_joint" in f.message for f in found)
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "descgen", *args], capture_output=True, text=True, timeout=120)
 
 
 def test_cli_validate_example_exits_0() -> None:

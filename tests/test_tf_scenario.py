@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,7 +10,8 @@ import pytest
 from descgen.spec import load_spec
 from descgen.tf import bagaudit, scenario
 
-from .conftest import EXAMPLE, ROOT
+from .conftest import EXAMPLE
+from .helpers import run_cli
 
 ROBOT = load_spec(EXAMPLE).robot
 START = 1_700_000_000 * 1_000_000_000
@@ -69,10 +68,6 @@ def test_max_age_catches_interpolation_across_a_gap(tmp_path: Path) -> None:
     assert stale and all(4.0 < t < 5.0 for t in stale)
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=ROOT, timeout=300
-    )
 
 
 def test_cli_json_and_exit_codes(tmp_path: Path) -> None:

@@ -81,7 +81,7 @@ def camera_without_optical_frame(robot: Robot) -> Iterator[Finding]:
         parent = robot.parent_joint(lk.name)
         if parent is not None and parent.parent and "camera" in parent.parent.lower():
             continue  # a sub-frame of a camera already considered
-        below = _descendants(robot, lk.name)
+        below = set(robot.descendants(lk.name))
         if not below & optical:
             yield at(
                 "NAME012",
@@ -89,17 +89,6 @@ def camera_without_optical_frame(robot: Robot) -> Iterator[Finding]:
                 f"camera frame '{lk.name}' has no optical frame below it",
                 f"add {lk.name.removesuffix('_link')}_optical_frame with rpy (-pi/2, 0, -pi/2)",
             )
-
-
-def _descendants(robot: Robot, link: str) -> set[str]:
-    out: set[str] = set()
-    todo = [link]
-    while todo:
-        for j in robot.child_joints(todo.pop()):
-            if j.child and j.child not in out:
-                out.add(j.child)
-                todo.append(j.child)
-    return out
 
 
 @rule("NAME013", "optical-frame-not-rotated", "error")
