@@ -43,7 +43,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             sys.stderr.write(report.text(loaded.findings))
             r = loaded.robot
             print(
-                f"{path}: valid: robot '{r.name}', {len(r.links)} links, {len(r.joints)} joints, "
+                f"{report.printable(path)}: valid: robot '{report.printable(r.name)}', {len(r.links)} links, "
+                f"{len(r.joints)} joints, "
                 f"{len(r.known_poses)} known poses"
             )
     if args.format == "json":
@@ -169,7 +170,8 @@ def _cmd_poses(args: argparse.Namespace) -> int:
 
             worst = "n/a" if r.error is None else f"{r.worst * 1000:.2f}"
             print(
-                f"{r.pose.name:<16} {r.measurement.frame:<22} {mm(r.measurement.xyz):<24} {mm(r.model):<24} "
+                f"{report.printable(r.pose.name):<16} {report.printable(r.measurement.frame):<22} "
+                f"{mm(r.measurement.xyz):<24} {mm(r.model):<24} "
                 f"{worst:>7} {r.measurement.tolerance * 1000:>5g}  {'pass' if r.ok else 'FAIL'}"
             )
         sys.stderr.write(report.text(found))
@@ -201,6 +203,7 @@ def _audit_options(args: argparse.Namespace) -> object:
         Path(args.controllers) if args.controllers else None,
         mappings,
         tuple(Path(p) for p in args.package_path or []),
+        args.trust_xacro,
     )
 
 
@@ -254,7 +257,7 @@ def _cmd_faults(args: argparse.Namespace) -> int:
         for r in results:
             verdict = "caught" if r.caught else "n/a" if not r.applicable else "MISSED"
             by = f" by {r.by.code}: {r.by.message}" if r.by else ""
-            print(f"{verdict:<7} {r.fault.name:<28} {r.planted}{by}")
+            print(f"{verdict:<7} {r.fault.name:<28} {report.printable(r.planted + by)}")
         caught = sum(r.caught for r in results)
         applicable = sum(r.applicable for r in results)
         print(f"{caught} of {applicable} planted faults caught ({len(results) - applicable} not applicable)")
@@ -292,32 +295,41 @@ def _cmd_frames(args: argparse.Namespace) -> int:
     def show(frame: str, depth: int, seen: set[str]) -> None:
         for e in children.get(frame, []):
             kind = "static" if e.static else "dynamic"  # type: ignore[attr-defined]
-            print(f"{'  ' * depth}{e.child}  <- {e.owner} on {e.topic} ({kind}; {e.via})")  # type: ignore[attr-defined]
+            line = f"{e.child}  <- {e.owner} on {e.topic} ({kind}; {e.via})"  # type: ignore[attr-defined]
+            print(f"{'  ' * depth}{report.printable(line)}")
             if e.child not in seen:  # type: ignore[attr-defined]
                 show(e.child, depth + 1, seen | {e.child})  # type: ignore[attr-defined]
 
     for r in roots:
-        print(r)
+        print(report.printable(r))
         show(r, 1, {r})
     sys.stderr.write(report.text(found))
     return exit_code(found)
 
 
-def _ns(text: str, what: str) -> int:
+def _seconds(text: str, what: str, low: float, high: float, bare_seconds: bool = True) -> float:
+    """An option's time in seconds, bounded; a bare number is seconds where the option was
+    documented in seconds before it took units."""
     from . import units
 
     try:
-        return round(units.to_si(text, "time") * 1e9)
+        return units.duration(text, low, high, bare_seconds=bare_seconds)
     except units.QuantityError as exc:
         raise InputError(
             [Finding(exc.code, "error", f"{what}: {exc.message}", exc.hint, "option", Where("<command line>"))]
         ) from None
 
 
-def _cmd_tf_audit(args: argparse.Namespace) -> int:
-    from .tf.bagaudit import audit
+def _ns(text: str, what: str) -> int:
+    from .tf.bagaudit import MAX_WAIT_S
 
-    max_age = _ns(args.max_age, "--max-age") if args.max_age else None
+    return round(_seconds(text, what, 0.0, MAX_WAIT_S, bare_seconds=False) * 1e9)
+
+
+def _cmd_tf_audit(args: argparse.Namespace) -> int:
+    from .tf.bagaudit import audit, shown
+
+    max_age = _ns(args.max_age, "--max-age") if args.max_age is not None else None
     rep = audit(Path(args.bag), args.target, tuple(args.topic or ()), _ns(args.wait, "--wait"), max_age)
     failed = rep.lookups - rep.counts["ok"]
     if args.format == "json":
@@ -328,42 +340,31 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
             f"disconnected, {rep.counts['stale']} stale, {rep.counts['future']} future-dated"
         )
         for topic, c in sorted(rep.per_topic.items()):
-            print(f"  {topic}: " + ", ".join(f"{k} {c[k]}" for k in ("ok", "disconnected", "stale", "future")))
+            print(f"  {shown(topic)}: " + ", ".join(f"{k} {c[k]}" for k in ("ok", "disconnected", "stale", "future")))
         print("latency (log time - stamp): " + ", ".join(f"{k} ms: {v}" for k, v in sorted(rep.latency.items())))
         for e in rep.examples:
             print(
-                f"  {e['outcome']}: {e['topic']} logged {e['log_time_ns'] / 1e9:.6f} stamped "
-                f"{e['stamp_ns'] / 1e9:.6f} in '{e['frame_id']}': {e['detail']}"
+                f"  {e['outcome']}: {shown(e['topic'])} logged {e['log_time_ns'] / 1e9:.6f} stamped "
+                f"{e['stamp_ns'] / 1e9:.6f} in '{shown(e['frame_id'])}': {shown(e['detail'], 300)}"
             )
     return EXIT_FAILED if failed else EXIT_OK
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:
     from .spec import load_spec
-    from .tf.scenario import write
+    from .tf.scenario import MAX_DURATION_S, MIN_DURATION_S, write
 
+    duration = _seconds(args.duration, "--duration", MIN_DURATION_S, MAX_DURATION_S)
     out = Path(args.out)
-    if out.exists():
-        raise InputError(
-            [
-                Finding(
-                    "BAG003",
-                    "error",
-                    f"{out} exists; a recording is written to a new folder",
-                    "choose another --out",
-                    "option",
-                    Where(str(out)),
-                )
-            ]
-        )
-    counts = write(load_spec(args.spec).robot, out, tuple(args.fault or ()), float(args.duration), args.storage)
+    robot = load_spec(args.spec).robot
+    counts = write(robot, out, tuple(args.fault or ()), duration, args.storage)
     print(f"wrote {out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
     return EXIT_OK
 
 
 def _cmd_control(args: argparse.Namespace) -> int:
-    from .control.run import read_trajectory, run, write_evidence
-    from .control.system import Plant
+    from .control.run import MAX_DURATION_S, MIN_DURATION_S, read_trajectory, run, write_evidence
+    from .control.system import Plant, plant_faults
     from .generate import default_out
     from .render.context import package_name
     from .spec import load_spec
@@ -384,10 +385,12 @@ def _cmd_control(args: argparse.Namespace) -> int:
                 )
             ]
         )
+    duration = (
+        _seconds(args.duration, "--duration", MIN_DURATION_S, MAX_DURATION_S) if args.duration is not None else None
+    )
+    faults = plant_faults(args.plant_fault or [], args.plant, robot)
     trajectory = read_trajectory(Path(args.trajectory), robot)
-    faults = dict(item.split(":=", 1) for item in args.plant_fault or [])
     plant = Plant(args.plant, faults=faults, noise=0.0)
-    duration = float(args.duration) if args.duration else None
     out = run(package, robot, trajectory, duration, plant)
     folder = Path(args.out) if args.out else package / "evidence"
     written = write_evidence(out, folder, robot)
@@ -451,6 +454,12 @@ def description_options(p: argparse.ArgumentParser) -> None:
         metavar="DIR",
         help="folder holding ROS packages, for $(find) and package:// (repeatable)",
     )
+    p.add_argument(
+        "--trust-xacro",
+        action="store_true",
+        help="expand Xacro with xacro's own evaluator, which runs the file's Python and reads any file and "
+        "environment variable; only for files you trust (default: a restricted evaluator, see docs/security.md)",
+    )
 
 
 def parser() -> argparse.ArgumentParser:
@@ -499,8 +508,12 @@ def parser() -> argparse.ArgumentParser:
     ta.add_argument("bag", help="rosbag2 folder (MCAP or sqlite3)")
     ta.add_argument("--target", required=True, help="frame to look every message up in (e.g. odom)")
     ta.add_argument("--topic", action="append", help="sensor topic (repeatable; default: every topic with a header)")
-    ta.add_argument("--wait", default="0 ms", help="how long a consumer waits for transforms (e.g. '50 ms')")
-    ta.add_argument("--max-age", help="flag interpolation across samples farther than this (e.g. '100 ms')")
+    ta.add_argument(
+        "--wait", default="0 ms", help="how long a consumer waits for transforms (e.g. '50 ms'; at most 1 h)"
+    )
+    ta.add_argument(
+        "--max-age", help="flag interpolation across samples farther than this (e.g. '100 ms'; at most 1 h)"
+    )
     ta.add_argument("--format", choices=("text", "json"), default="text")
     ta.set_defaults(fn=_cmd_tf_audit)
 
@@ -508,16 +521,28 @@ def parser() -> argparse.ArgumentParser:
     sc.add_argument("spec")
     sc.add_argument("--out", required=True, help="new rosbag2 folder to write")
     sc.add_argument("--fault", action="append", choices=("camera-future", "odom-gap", "unknown-frame"))
-    sc.add_argument("--duration", default="10", help="seconds")
+    sc.add_argument(
+        "--duration",
+        default="10 s",
+        help="length of the recording, e.g. '10 s' (a bare number is seconds; at most 10 min)",
+    )
     sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
     sc.set_defaults(fn=_cmd_tf_scenario)
 
     co = sub.add_parser("control", help="run a trajectory through a model of ros2_control (lifecycle, claims, loop)")
     co.add_argument("spec")
     co.add_argument("--trajectory", required=True)
-    co.add_argument("--duration", help="seconds (default: the trajectory plus 1 s)")
+    co.add_argument(
+        "--duration",
+        help="simulated time, e.g. '8 s' (a bare number is seconds; at most 10 min; default: the trajectory plus 1 s)",
+    )
     co.add_argument("--plant", choices=("mock", "sim"), default="mock")
-    co.add_argument("--plant-fault", action="append", metavar="JOINT:=stuck|offset|reversed")
+    co.add_argument(
+        "--plant-fault",
+        action="append",
+        metavar="JOINT:=stuck|offset|reversed",
+        help="plant a fault in a joint of the simulated plant (repeatable; needs --plant sim)",
+    )
     co.add_argument("--out", help="folder for the evidence (default: the package's evidence/)")
     co.set_defaults(fn=_cmd_control)
 
@@ -538,12 +563,29 @@ def parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
-        return int(args.fn(args))
+        code = int(args.fn(args))
+        sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit
+        return code
     except InputError as exc:
         sys.stderr.write(report.text(exc.findings))
         return EXIT_INPUT
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:
+        return _reader_went_away()
+
+
+def _reader_went_away() -> int:
+    """The reader of our output closed it (``descgen rules | head``): stop quietly. Python
+    flushes stdout again at exit; pointing it at devnull keeps that flush from raising a
+    second BrokenPipeError (https://docs.python.org/3/library/signal.html#note-on-sigpipe)."""
+    import contextlib
+    import os
+
+    # not a real file (captured in tests): then nothing is flushed to a pipe at exit
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    return 141  # 128 + SIGPIPE, what a shell reports for a writer killed by the closed pipe
 
 
 if __name__ == "__main__":

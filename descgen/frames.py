@@ -48,7 +48,7 @@ def _jsb(robot: Robot) -> str | None:
 
 def joint_state_feed(robot: Robot, joint: str, _seen: frozenset[str] = frozenset()) -> str | None:
     """What puts ``joint`` on /joint_states, or None when nothing does."""
-    source = next((j for j in robot.joints if j.name == joint), None)
+    source = robot.joint(joint)  # an index: a scan per joint would be quadratic on long chains
     if source is not None and source.mimic is not None and source.mimic.joint not in _seen | {joint}:
         feed = joint_state_feed(robot, source.mimic.joint, _seen | {joint})
         return None if feed is None else f"mimics {source.mimic.joint} ({feed})"

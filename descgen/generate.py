@@ -1,20 +1,37 @@
 """``generate`` and ``check``: render the package, prove it, then write it (all or nothing)
 or compare it with what is committed.
 
-This module is where generated files are written (:func:`write_package`).
+This module is where generated files are written (:func:`write_package`). The package is
+switched as a whole, never file by file: the complete new package (the old one's files,
+minus ours that changed or went stale, plus the new files) is built in a scratch folder
+``<out>/.descgen-new-*`` on the same file system, then swapped with the package folder in
+one step (Linux ``renameat2(RENAME_EXCHANGE)``), or where that is missing by two renames
+through ``.descgen-old-*``. A reader sees the old set or the new set, never a mix. A run
+killed or failing at any point leaves at worst scratch folders, which the next run removes
+(putting back a package that was moved aside and not replaced) before it writes.
+
+The package folder must not be, nor hold, a link or a special file: generate and check
+refuse it before reading or writing anything (GEN040-GEN043), so nothing is read or written
+outside the output root.
 """
 
 from __future__ import annotations
 
+import contextlib
+import ctypes
 import difflib
+import errno
+import functools
 import os
+import secrets
 import shutil
-import tempfile
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
+from typing import cast
 
 from . import checks
-from .findings import Finding, Where, errors
+from .findings import Finding, InputError, Where, errors
 from .model import Robot
 from .render import header, render_package
 from .render.context import package_name
@@ -92,53 +109,336 @@ def _ours(package_dir: Path) -> list[str]:
     if not package_dir.is_dir():
         return found
     for p in sorted(package_dir.rglob("*")):
-        if p.is_file():
+        rel = p.relative_to(package_dir).as_posix()
+        # only where generate writes, so other commands' (possibly large) evidence is not read
+        if p.is_file() and not p.is_symlink() and (rel.split("/")[0] in _OWN_DIRS or rel in _OWN_FILES):
             try:
                 head = p.read_text(encoding="utf-8")[:600]
             except (UnicodeDecodeError, OSError):
                 continue
-            rel = p.relative_to(package_dir).as_posix()
-            if header.MARK in head and (rel.split("/")[0] in _OWN_DIRS or rel in _OWN_FILES):
+            if header.MARK in head:
                 found.append(rel)
     return found
 
 
-def write_package(package_dir: Path, files: dict[str, str]) -> Outcome:
-    """Write every file into a scratch folder beside the package, then move each into
-    place. Nothing is moved unless everything was written; files descgen wrote earlier
-    and no longer produces are removed; other files are left alone."""
-    out = Outcome()
-    package_dir.parent.mkdir(parents=True, exist_ok=True)
-    stale = [rel for rel in _ours(package_dir) if rel not in files]
-    scratch = Path(tempfile.mkdtemp(prefix=".descgen-", dir=package_dir.parent))
+def _refusal(code: str, message: str, hint: str, path: Path) -> Finding:
+    return Finding(code, "error", message, hint, f"file:{path.name}", Where(str(path)))
+
+
+_LINK_HINT = (
+    "replace the link with a real file or folder (or delete it: generate recreates its own files); "
+    "descgen never writes or reads through links in its output"
+)
+
+
+def _unsafe_entries(package_dir: Path) -> list[Finding]:
+    """Links and special files in the package, found without following any link.
+
+    A link could make generate write (or check read and print) a file outside the output
+    root; a FIFO or device would hang or flood the copy of the user's files."""
+    if not os.path.lexists(package_dir):
+        return []
+    if package_dir.is_symlink():
+        target = os.readlink(package_dir)
+        return [
+            _refusal(
+                "GEN041", f"the package folder {package_dir} is a symbolic link (to {target})", _LINK_HINT, package_dir
+            )
+        ]
+    if not package_dir.is_dir():
+        return [
+            _refusal(
+                "GEN041",
+                f"the package folder {package_dir} exists but is not a folder",
+                "move that file away; generate writes a folder there",
+                package_dir,
+            )
+        ]
+    found: list[Finding] = []
+    pending = [package_dir]
+    while pending:
+        with os.scandir(pending.pop()) as entries:
+            for entry in entries:
+                path = Path(entry.path)
+                rel = path.relative_to(package_dir).as_posix()
+                if entry.is_symlink():
+                    what = f"{rel} in {package_dir.name} is a symbolic link (to {os.readlink(path)})"
+                    found.append(_refusal("GEN040", what, _LINK_HINT, path))
+                elif entry.is_dir(follow_symlinks=False):
+                    pending.append(path)
+                elif not entry.is_file(follow_symlinks=False):
+                    what = f"{rel} in {package_dir.name} is not a regular file (a FIFO, socket or device)"
+                    found.append(_refusal("GEN043", what, "remove it from the package folder", path))
+    return sorted(found, key=lambda f: f.where.file)
+
+
+def refuse_unsafe(package_dir: Path) -> None:
+    """Raise InputError when the package folder is a link, or holds a link or a special file."""
+    found = _unsafe_entries(package_dir)
+    if found:
+        raise InputError(found)
+
+
+def _output_root(spec: Path, out_root: Path | None) -> Path | None:
+    """``out_root``, after refusing a default output root that is a link.
+
+    The default root comes from where the spec lies, so a checked-out ``generated`` link
+    would send the package wherever its author chose; a root named with --out is the
+    user's own choice and may be a link."""
+    if out_root is not None:
+        return out_root
+    root = default_out(spec)
+    if root.is_symlink():
+        raise InputError(
+            [
+                _refusal(
+                    "GEN042",
+                    f"the output root {root} is a symbolic link (to {os.readlink(root)})",
+                    "name the output folder with --out, or replace the link with a folder",
+                    root,
+                )
+            ]
+        )
+    return root
+
+
+# --- the switch: build the whole new package beside the old one, then swap folders ---
+
+# Scratch folders in the output root, ".descgen-<state>-<package>-<random>". The state is in
+# the name, and every change of state is one rename, so a killed run leaves names that say
+# exactly what each folder holds:
+#   new-   being built, or (after an exchange) the old package on its way out: always removed
+#   old-   the complete old package, moved aside by the fallback switch: restored when the
+#          package is missing (killed between the two renames), else removed
+#   trash- being deleted: always removed
+# (a folder is never "marked complete" by a file inside it, since that file would then
+# appear in the package for a moment after the swap).
+_SCRATCH = ".descgen-"
+_AT_FDCWD = -100
+_RENAME_EXCHANGE = 2
+
+
+@functools.cache
+def _renameat2() -> Callable[..., int] | None:
+    """libc's renameat2 (glibc >= 2.28), or None on systems without it."""
     try:
-        for rel, text in files.items():
-            target = package_dir / rel
-            if target.is_file() and target.read_text(encoding="utf-8", errors="replace") == text:
-                out.unchanged.append(rel)
-                continue
-            tmp = scratch / rel
-            tmp.parent.mkdir(parents=True, exist_ok=True)
-            with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
-                fh.write(text)
-            out.written.append(rel)
-        for rel in out.written:
-            target = package_dir / rel
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(scratch / rel, target)
-        for rel in stale:
-            (package_dir / rel).unlink()
-            out.removed.append(rel)
+        libc = ctypes.CDLL(None, use_errno=True)
+        fn = libc.renameat2
+    except (AttributeError, OSError, TypeError):
+        return None
+    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    fn.restype = ctypes.c_int
+    return cast("Callable[..., int]", fn)
+
+
+def exchange(a: Path, b: Path) -> bool:
+    """Swap two folders in one step (Linux RENAME_EXCHANGE). False, with nothing changed,
+    when the system or the file system cannot; other failures raise OSError."""
+    fn = _renameat2()
+    if fn is None:
+        return False
+    if fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(a), None, str(b))
+
+
+def _scratch_path(root: Path, state: str, package: str) -> Path:
+    return root / f"{_SCRATCH}{state}-{package}-{secrets.token_hex(4)}"
+
+
+def _remove(path: Path) -> None:
+    """Delete a scratch entry; a link is unlinked, never followed."""
+    if path.is_symlink() or not path.is_dir():
+        with contextlib.suppress(FileNotFoundError):
+            path.unlink()
+    else:
+        shutil.rmtree(path, ignore_errors=True)
+
+
+def recover(root: Path) -> list[str]:
+    """Clean what killed or failed runs left in the output root: a package moved aside and
+    not replaced is put back; every other scratch folder is removed. Returns the names of
+    the packages put back."""
+    restored: list[str] = []
+    if not root.is_dir():
+        return restored
+    for entry in sorted(root.iterdir()):
+        if not entry.name.startswith(_SCRATCH):
+            continue
+        state, _, rest = entry.name[len(_SCRATCH) :].partition("-")
+        package = rest.rpartition("-")[0]
+        home = root / package
+        if state == "old" and package and entry.is_dir() and not entry.is_symlink() and not os.path.lexists(home):
+            os.rename(entry, home)
+            restored.append(package)
+        else:
+            _remove(entry)
+    return restored
+
+
+@contextlib.contextmanager
+def _locked(root: Path) -> Iterator[None]:
+    """One writer per output root, so no run cleans up another's scratch folder (POSIX only)."""
+    try:
+        import fcntl
+    except ImportError:  # Windows: no flock; runs must not overlap
+        yield
+        return
+    fd = os.open(root, os.O_RDONLY)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise InputError(
+                [
+                    _refusal(
+                        "GEN044",
+                        f"another descgen run is writing into {root}",
+                        "wait for it to finish, then run again",
+                        root,
+                    )
+                ]
+            ) from None
+        yield
     finally:
-        shutil.rmtree(scratch, ignore_errors=True)
+        os.close(fd)  # closing releases the lock
+
+
+def _fsync(path: Path) -> None:
+    """Flush a folder's entries to disk (POSIX; a no-op where folders cannot be opened)."""
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def _changes(package_dir: Path, files: dict[str, str]) -> Outcome:
+    """Which files change, which stay, which of ours are no longer produced (compared as bytes)."""
+    out = Outcome()
+    for rel, text in files.items():
+        target = package_dir / rel
+        same = target.is_file() and target.read_bytes() == text.encode("utf-8")
+        (out.unchanged if same else out.written).append(rel)
+    out.removed = [rel for rel in _ours(package_dir) if rel not in files]
+    return out
+
+
+def _copy_tree(src: Path, dst: Path, skip: set[str], rel: str = "") -> None:
+    """Everything of the old package but ``skip``, hard-linked (the old inodes are never
+    written again, so sharing them is safe and costs no space) or else copied; links are
+    never followed."""
+    with os.scandir(src) as entries:
+        for entry in sorted(entries, key=lambda e: e.name):
+            sub = f"{rel}{entry.name}"
+            source, target = Path(entry.path), dst / entry.name
+            if entry.is_symlink() or not (entry.is_dir(follow_symlinks=False) or entry.is_file(follow_symlinks=False)):
+                refuse_unsafe(src)  # appeared since the check: refuse, naming it
+            elif entry.is_dir(follow_symlinks=False):
+                os.mkdir(target)
+                shutil.copymode(source, target, follow_symlinks=False)
+                _copy_tree(source, target, skip, f"{sub}/")
+            elif sub not in skip:
+                try:
+                    os.link(source, target, follow_symlinks=False)
+                except OSError:
+                    shutil.copy2(source, target, follow_symlinks=False)
+
+
+def _write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+        fh.write(text)
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def _build(new: Path, package_dir: Path, files: dict[str, str], out: Outcome) -> None:
+    """The complete new package in ``new``: the old one's files (ours that changed or went
+    stale left out, everyone else's kept), then the files that changed."""
+    if package_dir.is_dir():
+        shutil.copymode(package_dir, new)
+        _copy_tree(package_dir, new, {*out.written, *out.removed})
+    for rel in out.written:
+        _write(new / rel, files[rel])
+    _fsync(new)
+
+
+def _switch(new: Path, package_dir: Path) -> Path | None:
+    """Put ``new`` in the package's place; returns the folder now holding the old package.
+
+    A reader sees the old folder or the new one, never a mix: one exchange where the system
+    has it; else two renames, and a run killed between them leaves a complete
+    ``.descgen-old-*`` that the next run puts back."""
+    if not os.path.lexists(package_dir):
+        os.rename(new, package_dir)
+        return None
+    if exchange(new, package_dir):
+        return new
+    old = _scratch_path(package_dir.parent, "old", package_dir.name)
+    os.rename(package_dir, old)
+    try:
+        os.rename(new, package_dir)
+    except BaseException:
+        os.rename(old, package_dir)
+        raise
+    return old
+
+
+def write_package(package_dir: Path, files: dict[str, str]) -> Outcome:
+    """Switch the package to ``files`` as a whole: build the complete new package in a
+    scratch folder in the output root, then swap the two folders (see :func:`_switch`).
+    Files descgen wrote earlier and no longer produces are dropped; other files (evidence
+    of other commands, the user's own) are carried over unchanged. Refuses (InputError)
+    links and special files in the package before anything is written; cleans up after
+    earlier killed runs first."""
+    for rel in files:
+        parts = PurePosixPath(rel).parts
+        if not parts or PurePosixPath(rel).is_absolute() or ".." in parts:
+            raise ValueError(f"not a path inside the package: {rel!r}")
+    refuse_unsafe(package_dir)
+    root = package_dir.parent
+    if os.path.lexists(root) and not root.is_dir():
+        raise InputError(
+            [_refusal("GEN042", f"the output root {root} is not a folder", "name a folder with --out", root)]
+        )
+    root.mkdir(parents=True, exist_ok=True)
+    with _locked(root):
+        if recover(root):
+            refuse_unsafe(package_dir)  # a package put back is checked like any other
+        out = _changes(package_dir, files)
+        if not out.written and not out.removed:
+            return out
+        new = _scratch_path(root, "new", package_dir.name)
+        os.mkdir(new)
+        try:
+            _build(new, package_dir, files, out)
+            old = _switch(new, package_dir)
+        except BaseException:
+            _remove(new)
+            raise
+        _fsync(root)
+        if old is not None:
+            trash = _scratch_path(root, "trash", package_dir.name)
+            os.rename(old, trash)
+            _remove(trash)
     return out
 
 
 def generate(spec: Path, out_root: Path | None = None, templates: Path | None = None, force: bool = False) -> Outcome:
-    p = plan(spec, out_root, templates)
+    p = plan(spec, _output_root(spec, out_root), templates)
     outcome = Outcome(findings=list(p.findings))
     if outcome.failed:
         return outcome
+    refuse_unsafe(p.package_dir)  # before reading any file of the package
     edited = [] if force else _hand_edited(p.package_dir, p.files)
     if edited:
         for rel in edited:
@@ -153,7 +453,22 @@ def generate(spec: Path, out_root: Path | None = None, templates: Path | None = 
                 )
             )
         return outcome
-    written = write_package(p.package_dir, p.files)
+    try:
+        written = write_package(p.package_dir, p.files)
+    except OSError as exc:  # a full disk, a read-only --out: the old package is still in place
+        raise InputError(
+            [
+                Finding(
+                    "GEN045",
+                    "error",
+                    f"could not write the package: {exc.strerror or exc}"
+                    + (f": {exc.filename}" if exc.filename else ""),
+                    "check free space and permissions of the output folder (--out); nothing was changed",
+                    "file",
+                    Where(str(p.package_dir)),
+                )
+            ]
+        ) from None
     written.findings = outcome.findings
     draw_frames(p.package_dir)
     return written
@@ -175,7 +490,8 @@ def draw_frames(package_dir: Path) -> None:
 
 def check(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Outcome:
     """Regenerate in memory and compare with the files on disk; run every check."""
-    p = plan(spec, out_root, templates)
+    p = plan(spec, _output_root(spec, out_root), templates)
+    refuse_unsafe(p.package_dir)  # a link would let the diff print a file from elsewhere
     outcome = Outcome(findings=list(p.findings))
     diffs: list[str] = []
     for rel, fresh in p.files.items():

@@ -3,17 +3,45 @@
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Iterable
 
 from .findings import Finding, summary
 
+MAX_QUOTED = 200  # characters of one quoted value in a text message
+MAX_FIELD = 2000  # characters of one printed field, whatever it holds
+
+# C0, DEL, C1 (with NEL), the Unicode line and paragraph separators, and the bidi controls
+# that reorder what a terminal shows ("Trojan Source"): a value from an audited file
+# could otherwise start a new line that looks like a finding, or rewrite the terminal.
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+_QUOTED = re.compile(f"'([^']{{{MAX_QUOTED + 1},}})'")
+
+
+def _escape(m: re.Match[str]) -> str:
+    c = m.group()
+    if c in _NAMED:
+        return _NAMED[c]
+    return f"\\x{ord(c):02x}" if ord(c) < 0x100 else f"\\u{ord(c):04x}"
+
+
+def printable(value: object, limit: int = MAX_FIELD) -> str:
+    """``value`` as one line of plain text for a terminal: control characters escaped
+    (``\\n``, ``\\x1b``), quoted values longer than MAX_QUOTED and the whole beyond
+    ``limit`` cut with an ellipsis. JSON and SARIF keep the full value."""
+    out = _CONTROL.sub(_escape, str(value))
+    out = _QUOTED.sub(lambda m: "'" + m.group(1)[:MAX_QUOTED] + "…'", out)
+    return out if len(out) <= limit else out[: limit - 1] + "…"
+
 
 def text(findings: Iterable[Finding]) -> str:
+    """One line per finding plus its hint line: nothing in a value can add a line."""
     lines = []
     for f in findings:
-        lines.append(f"{f.where}: {f.severity}[{f.code}]: {f.message}")
+        lines.append(f"{printable(f.where)}: {f.severity}[{f.code}]: {printable(f.message)}")
         if f.hint:
-            lines.append(f"  hint: {f.hint}")
+            lines.append(f"  hint: {printable(f.hint)}")
     return "\n".join(lines) + ("\n" if lines else "")
 
 

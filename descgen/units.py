@@ -18,11 +18,13 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from dataclasses import dataclass
 from decimal import Decimal
 from typing import Any
 
 import pint
+from pint.util import string_preprocessor
 
 ureg: pint.UnitRegistry[Any] = pint.UnitRegistry()
 """The project's one registry. Never create another (quantities from two registries
@@ -85,11 +87,67 @@ def _radian_power(q: pint.Quantity[Any]) -> int:
     return int(dict(root._units).get("radian", 0))  # type: ignore[arg-type]
 
 
+# pint evaluates its text as arithmetic with Python numbers, so "9**9**9 kg" would compute a
+# number with hundreds of millions of digits before anything else is checked. Quantity text
+# is therefore bounded first; these limits are far beyond any measured value.
+MAX_TEXT = 200  # characters of quantity text
+MAX_DIGITS = 40  # digits in one number
+MAX_EXPONENT = 100  # |n| in "x**n" / "x^n"
+_NUMBER = r"(?:\d[\d_]*\.?[\d_]*|\.\d[\d_]*)(?:[eE][+-]?\d+)?"
+# an exponent pint may evaluate: a plain number, optionally signed, optionally in parentheses
+# (pint turns "m²" into "m**(2)"); nothing may follow it that continues a name or a number
+_EXPONENT = re.compile(rf"\s*(?:[+-]\s*)?(?:({_NUMBER})|\(\s*(?:[+-]\s*)?({_NUMBER})\s*\))(?![\w.])")
+_POWER = re.compile(r"\*\*")
+
+
+def _too_complex(text: str) -> str | None:
+    """Why pint must not evaluate ``text`` (None if it may). Checked on pint's own
+    preprocessed form, where "^" and superscripts have already become "**"."""
+    if len(text) > MAX_TEXT:
+        return f"is {len(text)} characters long; quantity text is at most {MAX_TEXT}"
+    expr = string_preprocessor(text)
+    for digits in re.findall(r"\d[\d_]*", expr):
+        if len(digits) > MAX_DIGITS:
+            return f"has a number with {len(digits)} digits; at most {MAX_DIGITS} are read"
+    for power in _POWER.finditer(expr):
+        m = _EXPONENT.match(expr, power.end())
+        if m is None:
+            return "raises to a power that is not a plain number"
+        exponent = float((m.group(1) or m.group(2)).replace("_", ""))
+        if abs(exponent) > MAX_EXPONENT:
+            return f"raises to the power {exponent:g}; at most {MAX_EXPONENT} is read"
+        if expr[m.end() :].lstrip().startswith("**"):
+            return "chains powers (a**b**c)"
+        if expr[: power.start()].rstrip().endswith(")") and "**" in _group_before(expr, power.start()):
+            return "raises a power to a power ((a**b)**c)"
+    return None
+
+
+def _group_before(expr: str, end: int) -> str:
+    """The parenthesised group that closes just before ``end``."""
+    i = expr.rindex(")", 0, end)
+    depth = 0
+    for k in range(i, -1, -1):
+        depth += {")": 1, "(": -1}.get(expr[k], 0)
+        if depth == 0:
+            return expr[k : i + 1]
+    return expr[: i + 1]  # unbalanced: pint refuses it anyway, the whole prefix is the group
+
+
 def parse(text: str) -> pint.Quantity[Any]:
-    """Read quantity text with pint; refuse text that pint would misread."""
+    """Read quantity text with pint; refuse text that pint would misread or could not
+    evaluate in bounded time."""
     stripped = text.strip()
     if not stripped:
         raise QuantityError("UNIT002", "empty quantity", 'write a value and a unit, e.g. "300 mm"')
+    why = _too_complex(stripped)
+    if why is not None:
+        shown = stripped if len(stripped) <= 40 else stripped[:37] + "..."
+        raise QuantityError(
+            "UNIT020",
+            f'quantity text "{shown}" {why}',
+            'write a number and a unit, e.g. "300 mm" or "0.01 kg*m^2"',
+        )
     if "," in stripped:
         raise QuantityError(
             "UNIT002",
@@ -198,6 +256,29 @@ def _convert(q: pint.Quantity[Any], target: Any) -> float:
     0.17500000000000002 (which would then be printed, diffed and compared as such)."""
     factor = ureg.Quantity(1, q.units).to(target).magnitude
     return float(Decimal(repr(float(q.magnitude))) * Decimal(repr(float(factor))))
+
+
+_BARE_NUMBER = re.compile(rf"[+-]?{_NUMBER}")
+
+
+def duration(value: object, low: float, high: float, bare_seconds: bool = False) -> float:
+    """A time in seconds within ``[low, high]``: option values and trajectory times.
+
+    ``bare_seconds`` reads a plain number as seconds, for options documented as "seconds"
+    before they took units. Raises :class:`QuantityError` (UNIT021 when out of range).
+    """
+    written = value
+    if bare_seconds and isinstance(value, str) and _BARE_NUMBER.fullmatch(value.strip()):
+        written = f"{value.strip()} s"
+    seconds = to_si(written, "time")
+    if not low <= seconds <= high:
+        raise QuantityError(
+            "UNIT021",
+            f'"{value}" (= {describe_si(seconds, "time")}) is outside the allowed range '
+            f"{describe_si(low, 'time')} to {describe_si(high, 'time')}",
+            f"give a time from {low:g} s to {high:g} s",
+        )
+    return seconds
 
 
 def describe_si(value: float, kind_name: str) -> str:

@@ -17,12 +17,16 @@ from typing import Any
 import yaml
 
 from .findings import Finding, InputError, Where
+from .safeio import Codes, read_bounded
 
 MAX_BYTES = 5 * 1024 * 1024  # a robot spec is kilobytes; 5 MB is already absurd
 MAX_NODES = 200_000  # after alias expansion
 MAX_DEPTH = 64
 
 Path_ = tuple[str | int, ...]
+
+# YAML002 cannot read, YAML010 not a regular file (FIFO, device, folder), YAML003 too large
+SPEC_CODES = Codes(unreadable="YAML002", not_regular="YAML010", too_large="YAML003")
 
 # libyaml's composer when PyYAML was built with it (marks are the same), else pure Python
 _LOADER: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
@@ -60,30 +64,9 @@ def _fail(file: str, message: str, hint: str, line: int = 0, col: int = 0, code:
 
 
 def read_text(path: Path, display: str) -> str:
-    """The text of a spec file, refusing what cannot be a spec."""
-    try:
-        size = path.stat().st_size
-    except FileNotFoundError:
-        raise _fail(display, "file not found", "check the path", code="YAML002") from None
-    except OSError as exc:
-        raise _fail(
-            display, f"cannot read the file: {exc.strerror}", "check the path and permissions", code="YAML002"
-        ) from None
-    if path.is_dir():
-        raise _fail(display, "is a directory, not a spec file", "name a .yaml file", code="YAML002")
-    if size > MAX_BYTES:
-        raise _fail(
-            display,
-            f"file is {size / 1e6:.1f} MB; a robot spec is at most {MAX_BYTES // (1024 * 1024)} MB",
-            "is this the right file?",
-            code="YAML003",
-        )
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise _fail(
-            display, f"cannot read the file: {exc.strerror}", "check the path and permissions", code="YAML002"
-        ) from None
+    """The text of a spec file, refusing what cannot be a spec (type and size are checked
+    before anything is read: a FIFO or /dev/zero must not hang the loader)."""
+    raw = read_bounded(path, "spec", MAX_BYTES, display=display, codes=SPEC_CODES)
     if b"\0" in raw:
         raise _fail(display, "binary file (contains NUL bytes), not YAML", "name a .yaml spec", code="YAML003")
     try:
@@ -104,10 +87,20 @@ def loads(text: str, file: str = "<string>") -> Document:
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line, col = (mark.line + 1, mark.column + 1) if mark else (0, 0)
-        what = exc.problem or "malformed YAML"
+        what = " ".join((exc.problem or "malformed YAML").split())  # one line per finding
         raise _fail(file, f"malformed YAML: {what}", "fix the YAML syntax at this position", line, col) from None
+    except yaml.reader.ReaderError as exc:
+        line, col = _line_col(text, exc.position)
+        char = exc.character if isinstance(exc.character, int) else ord(exc.character or "\0")
+        raise _fail(
+            file,
+            f"malformed YAML: unacceptable character #x{char:04x}: {exc.reason}",
+            "remove the character, or write it as an escape (\\x1b) inside a double-quoted string",
+            line,
+            col,
+        ) from None
     except yaml.YAMLError as exc:
-        raise _fail(file, f"malformed YAML: {exc}", "fix the YAML syntax") from None
+        raise _fail(file, f"malformed YAML: {' '.join(str(exc).split())}", "fix the YAML syntax") from None
     except RecursionError:
         raise _fail(file, "YAML nested too deeply", f"a spec nests at most {MAX_DEPTH} levels") from None
     if node is None:
@@ -117,6 +110,17 @@ def loads(text: str, file: str = "<string>") -> Document:
     builder = _Builder(file)
     data = builder.build(node, (), 0)
     return Document(file, data, builder.key_marks, builder.value_marks, text)
+
+
+def _line_col(text: str, position: int) -> tuple[int, int]:
+    """1-based line and column of a ReaderError's position: libyaml counts UTF-8 bytes,
+    the pure-Python reader counts characters."""
+    if _LOADER is not yaml.SafeLoader:
+        prefix = text.encode("utf-8")[:position].decode("utf-8", "replace")
+    else:
+        prefix = text[:position]
+    start = prefix.rfind("\n") + 1
+    return prefix.count("\n") + 1, len(prefix) - start + 1
 
 
 class _Builder:

@@ -15,6 +15,7 @@ import yaml
 from lxml import etree
 
 from descgen import checks
+from descgen.findings import InputError
 from descgen.generate import check, generate
 
 from .conftest import ROOT, require_tool
@@ -138,9 +139,11 @@ def test_write_failure_midway_moves_nothing(generated: tuple[Path, Path], monkey
         return real_open(file, mode, *args, **kwargs)
 
     monkeypatch.setattr(builtins, "open", failing_open)
-    with pytest.raises(OSError):
+    with pytest.raises(InputError) as info:
         generate(spec)
     monkeypatch.undo()
+    assert [f.code for f in info.value.findings] == ["GEN045"]
+    assert "No space left on device" in info.value.findings[0].message
     assert seen["n"] == 3
     assert snapshot(pkg) == before
 

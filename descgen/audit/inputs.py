@@ -8,12 +8,13 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..findings import Finding, InputError, Where
+from ..findings import Finding, Where
 from ..model import Mesh, Robot, Ros2Control
 from ..readers.controllers import read_controllers_text
 from ..readers.srdf import read_srdf_text
 from ..readers.urdf import read_urdf_text
 from ..readers.xacro_file import expand, find_package
+from ..safeio import check_file, read_bounded, read_head
 from .registry import run
 
 
@@ -23,6 +24,7 @@ class Options:
     controllers: Path | None = None
     xacro_args: Mapping[str, str] = field(default_factory=dict)
     package_paths: Sequence[Path] = ()
+    trust_xacro: bool = False  # expand with xacro's own evaluator (runs the file's Python)
 
 
 def kind_of(path: Path) -> str:
@@ -33,10 +35,7 @@ def kind_of(path: Path) -> str:
         return "xacro"
     if name.endswith(".urdf"):
         return "urdf"
-    try:
-        head = path.read_bytes()[:4096]
-    except OSError:
-        return "urdf"
+    head = read_head(path, 4096)  # not read_bytes()[:4096]: that reads all of a 1 GB file (or /dev/zero)
     return "xacro" if b"xmlns:xacro" in head else "urdf"
 
 
@@ -56,33 +55,36 @@ def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) 
             g = shape.geometry
             if not isinstance(g, Mesh) or g.filename in out:
                 continue
-            name = g.filename
-            if name.startswith("package://"):
-                pkg, _, rest = name[len("package://") :].partition("/")
-                root = find_package(pkg, [*package_paths, base.parent, base]) if pkg else None
-                if root is None:
-                    out[name] = "unresolved"
-                    continue
-                target = (root / rest).resolve()
-                root = root.resolve()
-            elif name.startswith("file://") or name.startswith("/"):
-                out[name] = "escapes"
-                continue
-            else:
-                root = _package_root(base).resolve()
-                target = (base / name).resolve()
-            if not target.is_relative_to(root):
-                out[name] = "escapes"
-            else:
-                out[name] = "ok" if target.is_file() else "missing"
+            try:
+                out[g.filename] = _mesh_state(g.filename, base, package_paths)
+            except (OSError, ValueError):
+                # a name longer than the OS allows, a symlink loop, a NUL byte: no file can be there
+                out[g.filename] = "missing"
     return out
+
+
+def _mesh_state(name: str, base: Path, package_paths: Sequence[Path]) -> str:
+    if name.startswith("package://"):
+        pkg, _, rest = name[len("package://") :].partition("/")
+        root = find_package(pkg, [*package_paths, base.parent, base]) if pkg else None
+        if root is None:
+            return "unresolved"
+        target = (root / rest).resolve()
+        root = root.resolve()
+    elif name.startswith("file://") or name.startswith("/"):
+        return "escapes"
+    else:
+        root = _package_root(base).resolve()
+        target = (base / name).resolve()
+    if not target.is_relative_to(root):
+        return "escapes"
+    return "ok" if target.is_file() else "missing"
 
 
 def load_description(path: Path, options: Options = Options()) -> tuple[Robot, list[Finding]]:
     """The model of one description and what its readers reported. InputError when unusable."""
     shown = str(path)
-    if not path.exists():
-        raise InputError([Finding("READ001", "error", "file not found", "check the path", "file", Where(shown))])
+    check_file(path, "description", display=shown)  # missing, a FIFO, a device, too large: before any read
     kind = kind_of(path)
     found: list[Finding] = []
     if kind == "spec":
@@ -90,18 +92,21 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
 
         robot = load_spec(path, shown, rules=False).robot
     else:
-        data = expand(path, shown, options.xacro_args, options.package_paths) if kind == "xacro" else path.read_bytes()
+        if kind == "xacro":
+            data = expand(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+        else:
+            data = read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
         robot, found = read_urdf_text(data, display)
     extras = dict(robot.extras)
     if options.srdf is not None:
-        semantic, srdf_name, more = read_srdf_text(_read(options.srdf), str(options.srdf))
+        semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
         found += more
         robot = dataclasses.replace(robot, semantic=semantic)
         extras["srdf_robot_name"] = srdf_name
     if options.controllers is not None:
         controllers, rate, more = read_controllers_text(
-            _read(options.controllers).decode("utf-8", "replace"), str(options.controllers)
+            _read(options.controllers, "controllers YAML").decode("utf-8", "replace"), str(options.controllers)
         )
         found += more
         rc = robot.ros2_control or Ros2Control("", where=Where(str(options.controllers)))
@@ -112,22 +117,8 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
     return dataclasses.replace(robot, extras=extras), found
 
 
-def _read(path: Path) -> bytes:
-    try:
-        return path.read_bytes()
-    except OSError as exc:
-        raise InputError(
-            [
-                Finding(
-                    "READ001",
-                    "error",
-                    f"cannot read the file: {exc.strerror}",
-                    "check the path",
-                    "file",
-                    Where(str(path)),
-                )
-            ]
-        ) from None
+def _read(path: Path, what: str) -> bytes:
+    return read_bounded(path, what)
 
 
 def audit(path: Path, options: Options = Options()) -> list[Finding]:

@@ -12,16 +12,22 @@ from pathlib import Path
 from typing import Any
 
 from .. import units
-from ..findings import Finding, InputError
+from ..findings import Finding, InputError, Where
 from ..model import Robot
 from ..readers.controllers import read_controllers_text
 from ..readers.urdf import read_urdf_text
 from ..readers.xacro_file import expand
-from ..yamlsource import load
+from ..yamlsource import Document, load
 from .manager import ControllerManager, JointTrajectoryController, Point
 from .system import Hardware, JointHw, Plant, Trace
 
 DEFAULT_TOLERANCE = {"prismatic": 0.01, "other": math.radians(3)}
+# simulated time of one run (--duration and time_from_start): at least one cycle, and at most
+# ten minutes, which the loop model runs in about a minute; longer is a typo, not a test
+MIN_DURATION_S = 0.01
+MAX_DURATION_S = 600.0
+_KEYS = ("controller", "joints", "points")
+_POINT_KEYS = ("time_from_start", "positions")
 
 
 @dataclass
@@ -29,58 +35,134 @@ class Trajectory:
     controller: str
     joints: list[str]
     points: list[Point]
+    where: Where = field(default_factory=lambda: Where("<trajectory>"))  # the file, for messages
+
+
+class _Problems:
+    """The findings of one trajectory file, each placed at its YAML node."""
+
+    def __init__(self, doc: Document) -> None:
+        self.doc = doc
+        self.found: list[Finding] = []
+
+    def __call__(
+        self, where: tuple[str | int, ...], message: str, hint: str, code: str = "CTRL020", key: bool = False
+    ) -> None:
+        self.found.append(Finding(code, "error", message, hint, "trajectory", self.doc.where(where, key=key)))
 
 
 def read_trajectory(path: Path, robot: Robot) -> Trajectory:
+    """A trajectory file (controller, joints, points of time_from_start and positions), checked
+    so that a run can neither crash on it nor pass without running anything."""
     doc = load(path)
     data = doc.data
-    problems: list[Finding] = []
-
-    def bad(where: tuple[str | int, ...], message: str, hint: str) -> None:
-        problems.append(Finding("CTRL020", "error", message, hint, "trajectory", doc.where(where)))
-
+    bad = _Problems(doc)
     if not isinstance(data, dict):
-        raise InputError(
-            [
-                Finding(
-                    "CTRL020",
-                    "error",
-                    "a trajectory is a mapping (controller, joints, points)",
-                    "see the README",
-                    "trajectory",
-                    doc.where(()),
-                )
-            ]
-        )
-    joints = [str(j) for j in data.get("joints", [])]
-    for i, name in enumerate(joints):
-        if robot.joint(name) is None:
-            bad(("joints", i), f"unknown joint '{name}'", "name a joint of the robot")
-    points = []
-    for i, p in enumerate(data.get("points", []) or []):
-        try:
-            t = units.to_si(p.get("time_from_start"), "time")
-        except (units.QuantityError, AttributeError) as exc:
-            bad(("points", i), f"time_from_start: {getattr(exc, 'message', exc)}", 'write e.g. "2 s"')
+        bad((), "a trajectory is a mapping (controller, joints, points)", "see the README")
+        raise InputError(bad.found)
+    for k in data:
+        if k not in _KEYS:
+            bad((k,), f"unknown key {k!a}", f"a trajectory has {', '.join(_KEYS)}", key=True)
+    controller = data.get("controller")
+    if not isinstance(controller, str) or not controller:
+        bad(("controller",), "controller: expected the name of a joint_trajectory_controller", "e.g. arm_controller")
+    joints = _joints(data, robot, bad)
+    points = _points(data, joints, robot, bad)
+    if bad.found:
+        raise InputError(bad.found)
+    return Trajectory(str(controller), joints or [], points, doc.where(()))
+
+
+def _joints(data: dict[str, Any], robot: Robot, bad: _Problems) -> list[str] | None:
+    raw = data.get("joints")
+    if not isinstance(raw, list) or not raw:
+        bad(("joints",), "joints: expected a non-empty list of joint names", "e.g. joints: [elbow_joint]", "CTRL030")
+        return None
+    ok = True
+    for i, name in enumerate(raw):
+        if not isinstance(name, str):
+            bad(("joints", i), f"joints: {name!a} is not a joint name", "write the joint's name")
+            ok = False
+        elif robot.joint(name) is None:
+            bad(("joints", i), f"unknown joint {name!a}", "name a joint of the robot")
+        elif raw.index(name) != i:
+            bad(("joints", i), f"joint {name!a} is listed twice", "list each joint once")
+    return [str(j) for j in raw] if ok else None
+
+
+def _points(data: dict[str, Any], joints: list[str] | None, robot: Robot, bad: _Problems) -> list[Point]:
+    raw = data.get("points")
+    if raw is None or raw == []:
+        bad(("points",), "the trajectory has no points: nothing would run", "add at least one point", "CTRL030")
+        return []
+    if not isinstance(raw, list):
+        bad(("points",), "points: expected a list of points", "write points as a YAML list")
+        return []
+    points: list[Point] = []
+    last: float | None = None
+    for i, p in enumerate(raw):
+        if not isinstance(p, dict):
+            bad(("points", i), f"point {i + 1} is not a mapping", "write {time_from_start: ..., positions: [...]}")
             continue
-        values = []
-        for k, (name, raw) in enumerate(zip(joints, p.get("positions", []), strict=False)):
-            j = robot.joint(name)
-            kind = "length" if j is not None and j.type == "prismatic" else "angle"
-            try:
-                values.append(units.to_si(raw, kind))
-            except units.QuantityError as exc:
-                bad(("points", i, "positions", k), exc.message, exc.hint)
-        if len(p.get("positions", [])) != len(joints):
+        for k in p:
+            if k not in _POINT_KEYS:
+                bad(
+                    ("points", i, k),
+                    f"point {i + 1}: unknown key {k!a}",
+                    "a point has time_from_start and positions",
+                    key=True,
+                )
+        t = _time(p, i, bad)
+        if t is not None and last is not None and t <= last:
             bad(
-                ("points", i, "positions"),
-                f"{len(p.get('positions', []))} positions for {len(joints)} joints",
-                "give one position per joint",
+                ("points", i, "time_from_start"),
+                f"point {i + 1}: time_from_start {t:g} s is not after the previous point's {last:g} s",
+                "list points in increasing time",
+                "CTRL031",
             )
-        points.append(Point(t, tuple(values)))
-    if problems:
-        raise InputError(problems)
-    return Trajectory(str(data.get("controller", "")), joints, points)
+        last = t if t is not None else last
+        values = _positions(p, i, joints, robot, bad)
+        if t is not None and values is not None:
+            points.append(Point(t, values))
+    return points
+
+
+def _time(p: dict[str, Any], i: int, bad: _Problems) -> float | None:
+    if "time_from_start" not in p:
+        bad(("points", i), f"point {i + 1} has no time_from_start", 'write e.g. time_from_start: "2 s"')
+        return None
+    try:
+        return units.duration(p["time_from_start"], 0.0, MAX_DURATION_S)
+    except units.QuantityError as exc:
+        bad(("points", i, "time_from_start"), f"time_from_start: {exc.message}", exc.hint, exc.code)
+        return None
+
+
+def _positions(
+    p: dict[str, Any], i: int, joints: list[str] | None, robot: Robot, bad: _Problems
+) -> tuple[float, ...] | None:
+    raw = p.get("positions")
+    if not isinstance(raw, list):
+        bad(("points", i, "positions"), f"point {i + 1}: positions must be a list", 'write e.g. positions: ["0 deg"]')
+        return None
+    if joints is None:
+        return None
+    if len(raw) != len(joints):
+        bad(
+            ("points", i, "positions"),
+            f"{len(raw)} positions for {len(joints)} joints",
+            "give one position per joint",
+        )
+        return None
+    values = []
+    for k, (name, value) in enumerate(zip(joints, raw, strict=True)):
+        j = robot.joint(name)
+        kind = "length" if j is not None and j.type == "prismatic" else "angle"
+        try:
+            values.append(units.to_si(value, kind))
+        except units.QuantityError as exc:
+            bad(("points", i, "positions", k), exc.message, exc.hint, exc.code)
+    return tuple(values) if len(values) == len(joints) else None
 
 
 @dataclass
@@ -234,10 +316,27 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
                     f"no joint_trajectory_controller named '{trajectory.controller}' in the controllers file",
                     "name the arm's controller",
                     "trajectory",
+                    trajectory.where,
                 )
             ]
         )
-    end = duration if duration is not None else (trajectory.points[-1].time + 1.0 if trajectory.points else 1.0)
+    foreign = [j for j in trajectory.joints if j not in jtc.joints]
+    if foreign or not trajectory.points:
+        raise InputError(
+            [
+                Finding(
+                    "CTRL033" if foreign else "CTRL030",
+                    "error",
+                    f"controller '{trajectory.controller}' does not command {', '.join(foreign)}"
+                    if foreign
+                    else "the trajectory has no points: nothing would run",
+                    f"its joints are {', '.join(jtc.joints)}" if foreign else "add at least one point",
+                    "trajectory",
+                    trajectory.where,
+                )
+            ]
+        )
+    end = duration if duration is not None else trajectory.points[-1].time + 1.0
     dt = 1.0 / cm.update_rate
     # the goal is given in the trajectory's joint order; the controller has its own
     order = {n: i for i, n in enumerate(trajectory.joints)}
@@ -267,7 +366,21 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
 
 def write_evidence(out: Outcome, folder: Path, robot: Robot) -> list[str]:
     """lifecycle.jsonl/.md, interfaces.md, desired_vs_measured.csv, plots, MCAP, verdict.json."""
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:  # a file in the way, no permission
+        raise InputError(
+            [
+                Finding(
+                    "CTRL034",
+                    "error",
+                    f"cannot create the evidence folder {folder}: {exc.strerror or exc}",
+                    "choose another --out",
+                    "option",
+                    Where(str(folder)),
+                )
+            ]
+        ) from None
     cm = out.cm
     written = []
 

@@ -24,8 +24,14 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from ..findings import Finding, InputError, Where
+
+if TYPE_CHECKING:
+    from ..model import Robot
 
 UNCONFIGURED, INACTIVE, ACTIVE, FINALIZED = "unconfigured", "inactive", "active", "finalized"
 
@@ -99,6 +105,47 @@ class Plant:
     faults: dict[str, str] = field(default_factory=dict)  # joint -> stuck | offset | reversed
     offset: float = 0.1
     seed: int = 0
+
+
+FAULT_KINDS = ("stuck", "offset", "reversed")
+
+
+def plant_faults(items: Iterable[str], plant: str, robot: Robot) -> dict[str, str]:
+    """``--plant-fault JOINT:=KIND`` options as ``{joint: kind}``, every one checked: a fault
+    that is silently not planted would let a run pass that should fail."""
+    found: list[Finding] = []
+    faults: dict[str, str] = {}
+    controlled = {j.name for j in robot.ros2_control.joints} if robot.ros2_control else set()
+
+    def bad(message: str, hint: str) -> None:
+        found.append(Finding("CTRL032", "error", message, hint, "option", Where("<command line>")))
+
+    for item in items:
+        joint, sep, kind = item.partition(":=")
+        shown = ascii(item)
+        if not sep or not joint:
+            bad(f"--plant-fault {shown} is not JOINT:=KIND", "write e.g. --plant-fault elbow_joint:=stuck")
+        elif kind not in FAULT_KINDS:
+            bad(f"--plant-fault {shown}: unknown fault kind {kind!a}", f"use one of {', '.join(FAULT_KINDS)}")
+        elif joint not in controlled:
+            bad(
+                f"--plant-fault {shown}: {joint!a} is not a joint under ros2_control",
+                "name one of " + ", ".join(sorted(controlled))
+                if controlled
+                else "the robot has no ros2_control joints",
+            )
+        elif joint in faults and faults[joint] != kind:
+            bad(f"--plant-fault {shown}: {joint} already has the fault {faults[joint]}", "plant one fault per joint")
+        else:
+            faults[joint] = kind
+    if faults and plant != "sim" and not found:
+        bad(
+            "--plant-fault needs --plant sim: the mock plant echoes commands, so a fault would not show",
+            "add --plant sim",
+        )
+    if found:
+        raise InputError(found)
+    return faults
 
 
 class Hardware(Node):

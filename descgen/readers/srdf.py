@@ -39,6 +39,19 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
                 numbers = [float(t) for t in raw.split()]
             except ValueError:
                 numbers = []
+            if not all(math.isfinite(v) for v in numbers):
+                found.append(
+                    Finding(
+                        "READ042",
+                        "error",
+                        f"group state '{s.get('name')}' joint '{j.get('name')}' value '{raw}' is not a finite number",
+                        "write the joint position as a plain decimal number",
+                        f"group_state:{s.get('name')}",
+                        where(j),
+                    )
+                )
+                values.append((j.get("name", ""), math.nan))  # treated as missing, like an unreadable value
+                continue
             if len(numbers) != 1 and j.get("name") not in multi_dof:
                 found.append(
                     Finding(

@@ -10,15 +10,19 @@ unit is converted here. Defaults follow urdfdom (reference/urdf.md): a missing
 
 from __future__ import annotations
 
+import math
+import re
 from pathlib import Path
 
 from lxml import etree
 
 from .. import model as m
 from ..findings import Finding, InputError, Where
+from ..safeio import MAX_DESCRIPTION_BYTES, MIB, read_bounded
 from ..xmlcompare import line_of
 
-MAX_BYTES = 50 * 1024 * 1024
+MAX_BYTES = MAX_DESCRIPTION_BYTES  # also bounds an expanded Xacro
+_LIBXML_AT = re.compile(r",? line \d+, column \d+$")
 
 
 def safe_parser() -> etree.XMLParser:
@@ -34,9 +38,9 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
         raise InputError(
             [
                 Finding(
-                    "READ001",
+                    "READ041",
                     "error",
-                    f"file is {len(data) / 1e6:.0f} MB; too large for a description",
+                    f"file is {len(data) / 1e6:.0f} MB; a description is at most {MAX_BYTES / MIB:g} MiB",
                     "is this the right file?",
                     "file",
                     Where(file),
@@ -66,7 +70,7 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
                 Finding(
                     "READ001",
                     "error",
-                    f"malformed XML: {exc.msg}",
+                    f"malformed XML: {_one_line(exc.msg)}",
                     "fix the XML at this position",
                     "file",
                     Where(file, line, col + 1 if col else 0),
@@ -88,6 +92,12 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
             ]
         )
     return root
+
+
+def _one_line(message: str) -> str:
+    """libxml2's message on one line (some quote the rest of the line on a second one),
+    without its own ", line L, column C" (the finding carries the position)."""
+    return _LIBXML_AT.sub("", " ".join(message.split())) or "parse error"
 
 
 class _Reader:
@@ -117,7 +127,24 @@ class _Reader:
         if len(values) != n:
             self.problem(e, f"{e.tag} {attr}='{raw}' has {len(values)} numbers, not {n}", f"write {n} numbers", subject)
             return default
+        if not all(math.isfinite(v) for v in values):
+            self.not_finite(e, f"{e.tag} {attr}='{raw}'", subject)
+            return default
         return values
+
+    def not_finite(self, e: etree._Element, what: str, subject: str) -> None:
+        """nan, inf or an overflowing 1e999: urdfdom would accept it and every computation
+        downstream turns into nan, so the value is reported and then treated as missing."""
+        self.findings.append(
+            Finding(
+                "READ042",
+                "error",
+                f"{what} is not a finite number",
+                "write the measured value as a plain decimal number",
+                subject,
+                self.where(e),
+            )
+        )
 
     def number(self, e: etree._Element | None, attr: str, subject: str) -> float | None:
         v = self.floats(e, attr, 1, None, subject)
@@ -275,12 +302,20 @@ class _Reader:
                 for ie in je.findall(tag):
                     params = {p.get("name"): p.text for p in ie.findall("param")}
 
-                    def f(key: str, params: dict[str | None, str | None] = params) -> float | None:
+                    def f(
+                        key: str, params: dict[str | None, str | None] = params, ie: etree._Element = ie
+                    ) -> float | None:
                         try:
                             text = params.get(key)
-                            return None if text is None else float(text)
+                            value = None if text is None else float(text)
                         except ValueError:
                             return None
+                        if value is not None and not math.isfinite(value):
+                            self.not_finite(
+                                ie, f"{ie.get('name', '')} param {key}='{text}'", f"joint:{je.get('name', '')}"
+                            )
+                            return None
+                        return value
 
                     out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value")))
                 return tuple(out)
@@ -361,14 +396,4 @@ def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
 
 def read_urdf(path: Path, display: str | None = None) -> tuple[m.Robot, list[Finding]]:
     shown = display or str(path)
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise InputError(
-            [
-                Finding(
-                    "READ001", "error", f"cannot read the file: {exc.strerror}", "check the path", "file", Where(shown)
-                )
-            ]
-        ) from None
-    return read_urdf_text(data, shown)
+    return read_urdf_text(read_bounded(path, "URDF", display=shown), shown)

@@ -1,21 +1,60 @@
-"""Expand a Xacro in process with the PyPI ``xacro`` package.
+"""Expand a Xacro in process with the PyPI ``xacro`` package, as data.
 
-``$(find pkg)`` normally asks the ament index; without ROS we answer it from
-``--package-path`` folders: ``<folder>/<pkg>`` (or ``<folder>`` itself when its
-package.xml names ``pkg``). Xacro can read files and environment variables, so only
-trusted files should be expanded (reference/xacro.md, "Security").
+xacro runs ``${...}`` and ``$(eval ...)`` through Python's ``eval`` and lets a file read any
+file and environment variable (reference/xacro.md, "Security"). An audited Xacro is someone
+else's file, so by default it is expanded in a sandbox: xacro still does the XML work
+(properties, macros, includes, conditionals), but
+
+- expressions go through :mod:`descgen.readers.xacro_eval` (no code, bounded numbers);
+- includes, ``xacro.load_yaml`` and ``$(find)`` reach only the file's own package (the
+  nearest folder holding a package.xml, else the file's folder) and ``--package-path``
+  folders, and only regular files of bounded size;
+- ``$(env)``/``$(optenv)`` see only :data:`ENV_ALLOWED`, and ``$(cwd)`` is refused;
+- macro calls, produced text and time are bounded.
+
+``trusted=True`` (``--trust-xacro``) uses xacro's own evaluator for files the user trusts;
+only ``$(find)`` is still answered from ``--package-path``, since there is no ament index.
+xacro keeps its state in module globals, so one expansion runs at a time.
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
 import re
+import threading
+import time
 from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from ..findings import Finding, InputError, Where
+from . import xacro_eval as xe
 
 _NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
+_LOCK = threading.RLock()
+_PACKAGE_NAME = re.compile(r"[a-zA-Z0-9][a-zA-Z0-9_-]+")
+
+ENV_ALLOWED = frozenset({"ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION"})
+"""Environment variables an audited Xacro may read: they say which ROS it is for, nothing
+about the machine or the user."""
+
+MAX_FILE_BYTES = 16 * 1024 * 1024  # one Xacro, include or YAML file
+MAX_MACRO_CALLS = 20_000
+MAX_TEXT = 50 * 1024 * 1024  # characters of all evaluated text together
+MAX_SECONDS = 30.0
+
+_CODES = {"expression": "READ030", "file": "READ031", "environment": "READ032", "limit": "READ033"}
+_HINTS = {
+    "expression": "audited Xacro is expanded with a restricted evaluator (docs/security.md); "
+    "if you trust this file, pass --trust-xacro",
+    "file": "an audited Xacro may read files only in its own package and the --package-path folders; "
+    "add the package's folder with --package-path",
+    "environment": "pass the value with --xacro-arg if the file takes it as an argument, or --trust-xacro "
+    "if you trust the file",
+    "limit": "real descriptions stay far below these limits; if you trust this file, pass --trust-xacro",
+}
 
 
 def find_package(name: str, package_paths: Sequence[Path]) -> Path | None:
@@ -35,11 +74,172 @@ def find_package(name: str, package_paths: Sequence[Path]) -> Path | None:
     return None
 
 
+def package_root(start: Path) -> Path:
+    """The nearest folder at or above ``start`` holding a package.xml, else ``start``."""
+    for folder in (start, *start.parents):
+        if (folder / "package.xml").is_file():
+            return folder
+    return start
+
+
+@dataclass
+class _Sandbox:
+    roots: tuple[Path, ...]
+    deadline: float
+    budget: xe.Budget = field(default_factory=xe.Budget)
+    macro_calls: int = 0
+    text: int = 0
+    refusal: _Refusal | None = None
+
+
+@dataclass
+class _Refusal:
+    error: xe.RefusedError
+    file: str | None
+    needle: str
+
+
+def _confine(box: _Sandbox, filename: str, what: str) -> str:
+    """``filename`` if it is a regular, bounded file inside the sandbox's folders."""
+    real = Path(os.path.realpath(filename))
+    if not any(real.is_relative_to(root) for root in box.roots):
+        raise xe.RefusedError(f"{what} '{filename}' is outside the folders this Xacro may read", "file")
+    try:
+        st = real.stat()
+    except OSError as exc:
+        raise xe.RefusedError(f"{what} '{filename}' cannot be read: {exc.strerror}", "file") from None
+    import stat
+
+    if not stat.S_ISREG(st.st_mode):
+        raise xe.RefusedError(f"{what} '{filename}' is not a regular file", "file")
+    if st.st_size > MAX_FILE_BYTES:
+        raise xe.RefusedError(f"{what} '{filename}' is larger than {MAX_FILE_BYTES // 2**20} MiB", "limit")
+    with open(real, "rb") as fh:
+        if b"<!DOCTYPE" in fh.read(MAX_FILE_BYTES) and what == "include":
+            raise xe.RefusedError(f"{what} '{filename}' has a DOCTYPE (entities are not allowed in an audited Xacro)")
+    return str(real)
+
+
+def _globals(box: _Sandbox) -> tuple[dict[str, Any], frozenset[int]]:
+    """The symbol table an expression starts from, and the ids of every callable in it."""
+    import xacro
+
+    def load_yaml(filename: str) -> Any:
+        return xacro.load_yaml(_confine(box, xacro.abs_filename_spec(filename), "YAML file"))
+
+    def namespace(items: Mapping[str, Any]) -> Any:
+        ns = xacro.NameSpace()
+        ns.update(items)
+        return ns
+
+    original = xacro._global_symbols["xacro"]
+    original_python = dict(xacro._global_symbols["python"])
+    helpers = {
+        "load_yaml": load_yaml,
+        "dotify": xacro.YamlDictWrapper,
+        "abs_filename": xacro.abs_filename_spec,
+        "arg": original["arg"],
+        "tokenize": xacro.tokenize,
+        **{k: original[k] for k in ("message", "warning", "error", "fatal", "print_location") if k in original},
+    }
+    maths = xe.math_names()
+    top: dict[str, Any] = {k: v for k, v in xacro._global_symbols.items() if k not in ("python", "math", "xacro")}
+    top.update({k: xe.BUILTINS[k] for k in ("list", "dict", "map", "len", "str", "float", "int")})
+    top.update({k: xe.BUILTINS[k] for k in ("bool", "min", "max", "round", "sorted", "range")})
+    top.update(dotify=xacro.YamlDictWrapper, abs_filename=xacro.abs_filename_spec)
+    top.update(maths)
+    top.update(
+        {
+            "True": True,
+            "False": False,
+            "load_yaml": load_yaml,
+            # xacro's other builtins stay visible so that using one is refused by name (not "undefined")
+            "python": namespace({**original_python, **xe.BUILTINS}),
+            "math": namespace(maths),
+            "xacro": namespace(helpers),
+        }
+    )
+    allowed = frozenset(
+        id(v) for table in (top, xe.BUILTINS, maths, helpers) for v in table.values() if callable(v)
+    ) | frozenset({id(xacro.YamlDictWrapper), id(xacro.YamlListWrapper)})
+    return top, allowed
+
+
+def _eval_names(box: _Sandbox, context: dict[str, Any]) -> tuple[Mapping[str, Any], frozenset[int]]:
+    """The names ``$(eval ...)`` sees in xacro: arg(), find(), env(), optenv(), dirname(),
+    math, and the substitution args themselves."""
+    import xacro.substitution_args as sa
+
+    args = context.setdefault("arg", {})
+
+    def arg(name: str) -> Any:
+        return sa.convert_value(sa._eval_arg(name, args=args), "auto")
+
+    def dirname() -> str:
+        return sa._eval_dirname(context.get("filename"))  # type: ignore[no-any-return]
+
+    functions: dict[str, Any] = {
+        "true": True,
+        "false": False,
+        "True": True,
+        "False": False,
+        "arg": arg,
+        "dirname": dirname,
+        "env": sa._eval_env,
+        "optenv": sa._eval_optenv,
+        "find": sa._eval_find,
+        **xe.math_names(),
+        **{k: xe.BUILTINS[k] for k in ("list", "dict", "map", "str", "float", "int")},
+    }
+
+    class Names(Mapping[str, Any]):
+        def __getitem__(self, key: str) -> Any:
+            if key in functions:
+                return functions[key]
+            return sa.convert_value(args[key], "auto")
+
+        def __iter__(self) -> Iterator[str]:
+            return iter({**args, **functions})
+
+        def __len__(self) -> int:
+            return len({**args, **functions})
+
+    return Names(), frozenset(id(v) for v in functions.values() if callable(v))
+
+
+def _refuse(box: _Sandbox, error: xe.RefusedError, needle: str) -> xe.RefusedError:
+    import xacro
+
+    if box.refusal is None:
+        box.refusal = _Refusal(error, xacro.filestack[-1] if xacro.filestack else None, needle)
+    return error
+
+
+def _tick(box: _Sandbox) -> None:
+    if time.monotonic() > box.deadline:
+        raise xe.RefusedError(f"expanding this Xacro took longer than {MAX_SECONDS:g} s", "limit")
+
+
+@contextlib.contextmanager
+def _patched(obj: Any, **attrs: Any) -> Iterator[None]:
+    saved = {k: getattr(obj, k) for k in attrs}
+    for k, v in attrs.items():
+        setattr(obj, k, v)
+    try:
+        yield
+    finally:
+        for k, v in saved.items():
+            setattr(obj, k, v)
+
+
 @contextlib.contextmanager
 def _find_from(package_paths: Sequence[Path]) -> Iterator[None]:
     import xacro.substitution_args as sa
 
     def eval_find(pkg: str) -> str:
+        # ament_index_python refuses other names too; "..", "/" must not walk out of the folders
+        if not _PACKAGE_NAME.fullmatch(pkg):
+            raise LookupError(f"'{pkg}' is not a package name")
         found = find_package(pkg, package_paths)
         if found is None:
             raise LookupError(
@@ -47,37 +247,184 @@ def _find_from(package_paths: Sequence[Path]) -> Iterator[None]:
             )
         return str(found.resolve())
 
-    saved = sa._eval_find, sa._eval_dict.get("find")
-    sa._eval_find = eval_find
-    sa._eval_dict["find"] = eval_find
+    with _patched(sa, _eval_find=eval_find), _patched_item(sa._eval_dict, "find", eval_find):
+        yield
+
+
+@contextlib.contextmanager
+def _patched_item(table: dict[str, Any], key: str, value: Any) -> Iterator[None]:
+    saved = table.get(key)
+    table[key] = value
     try:
         yield
     finally:
-        sa._eval_find = saved[0]
-        sa._eval_dict["find"] = saved[1]
+        table[key] = saved
+
+
+@contextlib.contextmanager
+def _sandboxed(box: _Sandbox) -> Iterator[None]:
+    """xacro with every door to code, files and the environment replaced (see module doc)."""
+    import xacro
+    import xacro.substitution_args as sa
+
+    symbols, allowed = _globals(box)
+    original_eval_text = xacro.eval_text
+    original_extension = xacro.eval_extension
+    original_macro_call = xacro.handle_macro_call
+
+    def safe_eval(expr: str, names: Any, locals_: Any = None) -> Any:
+        _tick(box)
+        try:
+            return xe.Evaluator(names, allowed, box.budget).run(expr)
+        except xe.RefusedError as exc:
+            raise _refuse(box, exc, expr) from None
+
+    def eval_dollar(s: str, context: dict[str, Any]) -> str:
+        names, fns = _eval_names(box, context)
+        try:
+            return str(xe.Evaluator(names, fns, box.budget).run(s))
+        except xe.RefusedError as exc:
+            raise _refuse(box, exc, s) from None
+
+    def env(name: str) -> str:
+        if name not in ENV_ALLOWED:
+            raise _refuse(
+                box,
+                xe.RefusedError(
+                    f"$(env {name}): an audited Xacro may read only {', '.join(sorted(ENV_ALLOWED))}", "environment"
+                ),
+                f"env {name}",
+            )
+        return sa.os.environ[name]  # type: ignore[no-any-return]  # KeyError: unset, as in xacro
+
+    def optenv(name: str, default: str = "") -> str:
+        # not on the allow-list: read as unset, so the file's own default applies
+        return os.environ.get(name, default) if name in ENV_ALLOWED else default
+
+    def eval_extension(s: str) -> Any:
+        _tick(box)
+        if s.strip() == "$(cwd)":
+            raise _refuse(box, xe.RefusedError("$(cwd) is not available to an audited Xacro", "environment"), "$(cwd)")
+        return original_extension(s)
+
+    def eval_text(text: Any, names: Any) -> Any:
+        _tick(box)
+        out = original_eval_text(text, names)
+        if isinstance(out, str):
+            box.text += len(out)
+            if len(out) > xe.MAX_SIZE or box.text > MAX_TEXT:
+                raise _refuse(box, xe.RefusedError("this Xacro produces more text than an audit reads", "limit"), "")
+        return out
+
+    def handle_macro_call(node: Any, macros: Any, names: Any) -> Any:
+        box.macro_calls += 1
+        _tick(box)
+        if box.macro_calls > MAX_MACRO_CALLS:
+            raise _refuse(
+                box, xe.RefusedError(f"more than {MAX_MACRO_CALLS} macro calls", "limit"), node.tagName if node else ""
+            )
+        return original_macro_call(node, macros, names)
+
+    def get_include_files(filename_spec: str, names: Any) -> Iterator[str]:
+        spec = xacro.abs_filename_spec(str(original_eval_text(filename_spec, names)))
+        if re.search("[*[?]+", spec):
+            head = Path(re.split("[*[?]", spec, maxsplit=1)[0]).parent
+            if not any(Path(os.path.realpath(head)).is_relative_to(r) for r in box.roots):
+                raise _refuse(
+                    box,
+                    xe.RefusedError(f"include '{spec}' is outside the folders this Xacro may read", "file"),
+                    filename_spec,
+                )
+        for filename in xacro.__dict__["_original_get_include_files"](filename_spec, names):
+            try:
+                yield _confine(box, filename, "include")
+            except xe.RefusedError as exc:
+                raise _refuse(box, exc, filename_spec) from None
+
+    xacro.__dict__.setdefault("_original_get_include_files", xacro.get_include_files)
+    with contextlib.ExitStack() as stack:
+        stack.enter_context(
+            _patched(
+                xacro,
+                _global_symbols=symbols,
+                safe_eval=safe_eval,
+                eval_text=eval_text,
+                eval_extension=eval_extension,
+                handle_macro_call=handle_macro_call,
+                get_include_files=get_include_files,
+            )
+        )
+        stack.enter_context(_patched(sa, _eval=eval_dollar, _eval_env=env, _eval_optenv=optenv))
+        yield
+
+
+def _line_of(file: str | None, needle: str) -> tuple[int, int]:
+    if not file or not needle:
+        return 0, 0
+    try:
+        text = Path(file).read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return 0, 0
+    from xml.sax.saxutils import escape
+
+    # the expression was read from XML: look for it as written there too
+    plain = needle.strip()
+    forms = (plain, escape(plain), escape(plain, {'"': "&quot;"}), escape(plain, {"'": "&apos;"}))
+    idx = next((i for i in (text.find(f) for f in forms) if i >= 0), -1)
+    if idx < 0:
+        return 0, 0
+    line = text.count("\n", 0, idx) + 1
+    return line, idx - (text.rfind("\n", 0, idx) + 1) + 1
 
 
 def expand(
-    path: Path, display: str, mappings: Mapping[str, str] | None = None, package_paths: Sequence[Path] = ()
+    path: Path,
+    display: str,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Sequence[Path] = (),
+    trusted: bool = False,
 ) -> bytes:
-    """The expanded XML of a Xacro file, or an InputError saying why xacro refused it."""
+    """The expanded XML of a Xacro file, or an InputError saying why it was refused."""
     import xacro
 
-    try:
-        with _find_from(package_paths):
-            doc = xacro.process_file(str(path), mappings=dict(mappings or {}))
-    except Exception as exc:  # xacro raises XacroException, XML errors, lookup errors, ...
-        message = " ".join(str(exc).split()) or type(exc).__name__
-        raise InputError(
-            [
-                Finding(
-                    "READ004",
-                    "error",
-                    f"xacro could not expand the file: {message}",
-                    "pass --xacro-arg name:=value for its arguments and --package-path for $(find)",
-                    "file",
-                    Where(display),
-                )
-            ]
-        ) from None
-    return str(doc.toxml()).encode("utf-8")
+    top = Path(os.path.realpath(path))
+    roots = tuple(dict.fromkeys([package_root(top.parent), *(Path(os.path.realpath(p)) for p in package_paths)]))
+    box = _Sandbox(roots, time.monotonic() + MAX_SECONDS)
+    with _LOCK:
+        try:
+            if not trusted:
+                _confine(box, str(top), "include")
+            with contextlib.ExitStack() as stack:
+                stack.enter_context(_find_from(package_paths))
+                if not trusted:
+                    stack.enter_context(_sandboxed(box))
+                doc = xacro.process_file(str(path), mappings=dict(mappings or {}))
+                text = str(doc.toxml())
+        except xe.RefusedError as exc:
+            box.refusal = box.refusal or _Refusal(exc, str(top), "")
+            raise InputError([_refusal_finding(box.refusal, top, display)]) from None
+        except Exception as exc:  # xacro raises XacroException, XML errors, lookup errors, ...
+            if box.refusal is not None:
+                raise InputError([_refusal_finding(box.refusal, top, display)]) from None
+            message = " ".join(str(exc).split()) or type(exc).__name__
+            raise InputError(
+                [
+                    Finding(
+                        "READ004",
+                        "error",
+                        f"xacro could not expand the file: {message}",
+                        "pass --xacro-arg name:=value for its arguments and --package-path for $(find)",
+                        "file",
+                        Where(display),
+                    )
+                ]
+            ) from None
+    return text.encode("utf-8")
+
+
+def _refusal_finding(refusal: _Refusal, top: Path, display: str) -> Finding:
+    file = refusal.file
+    shown = display if file is None or Path(os.path.realpath(file)) == top else file
+    line, col = _line_of(file or str(top), refusal.needle)
+    kind = refusal.error.kind
+    return Finding(_CODES[kind], "error", refusal.error.message, _HINTS[kind], "file", Where(shown, line, col))

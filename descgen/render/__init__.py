@@ -9,7 +9,7 @@ import jinja2
 
 from ..model import Robot
 from . import context, header
-from .formatting import comment, mdcell, num, vec
+from .formatting import comment, dot, mdcell, mermaid, num, pyinner, pystr, vec, yamlstr
 
 XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
 
@@ -34,6 +34,9 @@ def environment(templates: Path | None = None) -> jinja2.Environment:
     env.filters["vec"] = vec
     env.filters["comment"] = comment
     env.filters["mdcell"] = mdcell
+    # every output language gets its own escaping (DESIGN.md, "Trust boundary")
+    for f in (dot, mermaid, pyinner, pystr, yamlstr):
+        env.filters[f.__name__] = f
     return env
 
 

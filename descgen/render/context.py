@@ -125,14 +125,14 @@ def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]
             if n not in names:
                 names.append(n)
     ids = {n: f"f{i}" for i, n in enumerate(names)}
-    nodes = [{"id": ids[n], "label": n.replace('"', "#quot;")} for n in names]
+    nodes = [{"id": ids[n], "label": n} for n in names]  # escaped by the template's filter
     rows = [
         {
             "parent": e.parent,
             "child": e.child,
             "parent_id": ids[e.parent],
             "child_id": ids[e.child],
-            "owner": e.owner.replace('"', "'"),
+            "owner": e.owner,
             "topic": e.topic,
             "static": e.static,
             "joint": e.joint,

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import json
 import math
 import re
+import unicodedata
 from collections.abc import Iterable
 
+import yaml
 from markupsafe import Markup
 
 
@@ -27,14 +30,73 @@ def vec(values: Iterable[float]) -> str:
 
 
 _DASHES = re.compile(r"-{2,}")
+# Characters that end a line somewhere (Python, YAML and Markdown treat \r, \x0b, \x0c,
+# \x1c-\x1e, \x85, U+2028 and U+2029 as line ends), are illegal in XML, or are invisible
+# and reorder what a reviewer sees (bidi overrides): written as escapes, never raw.
+_INVISIBLE = frozenset(("Cc", "Cf", "Cs", "Zl", "Zp"))
 
 
-def comment(text: object) -> str:
-    """Text safe inside an XML comment (no ``--``, no trailing ``-``) or after ``#``:
-    one line, so that nothing can end the comment early."""
-    s = " ".join(str(text).split())
+def _hidden(ch: str) -> bool:
+    return unicodedata.category(ch) in _INVISIBLE or ch in "\ufffe\uffff"
+
+
+def visible(text: object) -> str:
+    """One line with every control, line-separator or format character as a ``\\n``,
+    ``\\xNN`` or ``\\uXXXX`` escape; other text is unchanged."""
+    s = str(text)
+    if not any(_hidden(ch) for ch in s):
+        return s
+    return "".join(json.dumps(ch)[1:-1] if ch in "\n\t\r" else _escape(ch) if _hidden(ch) else ch for ch in s)
+
+
+def _escape(ch: str) -> str:
+    code = ord(ch)
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+
+def comment(text: object) -> Markup:
+    """Text safe inside an XML comment (no ``--``, no trailing ``-``) or after ``#``/``//``:
+    one line, so that nothing can end the comment early; whitespace runs become one space.
+    ``xacro:eval-comments`` would make xacro evaluate the comments after it, so it is broken up.
+    Marked safe: a comment shows ``<``, ``&`` and quotes as they are (no entity escaping)."""
+    s = visible(" ".join(str(text).split()))
     s = _DASHES.sub(lambda m: "- " * (len(m.group()) - 1) + "-", s)
-    return s + " " if s.endswith("-") else s
+    s = s.replace("xacro:eval-comments", "xacro: eval-comments")
+    return Markup(s + " " if s.endswith("-") else s)
+
+
+def pystr(text: object) -> str:
+    """A Python string literal (double-quoted) whose value is ``text``: a JSON string is one."""
+    return json.dumps(str(text))
+
+
+def pyinner(text: object) -> str:
+    """``text`` inside a double- or triple-double-quoted Python string (a docstring)."""
+    return pystr(text)[1:-1]
+
+
+def yamlstr(text: object) -> str:
+    """A YAML scalar that reads back as the string ``text`` (quoted only when it must be:
+    ``null``, ``yes``, ``1e3``, a colon...), on one line."""
+    plain = yaml.safe_dump(str(text), width=2**31).removesuffix("\n").removesuffix("\n...")
+    if "\n" not in plain:
+        return plain
+    # a line break in the text: a double-quoted scalar writes it (and every other control) as an escape
+    return yaml.safe_dump(str(text), width=2**31, default_style='"').removesuffix("\n")
+
+
+def dot(text: object) -> str:
+    """Text inside a double-quoted Graphviz string: ``\\`` and ``"`` escaped, one line."""
+    return visible(text).replace("\\", "\\\\").replace('"', '\\"')
+
+
+def mermaid(text: object) -> str:
+    """Text inside a quoted Mermaid label, one line: ``#`` (which starts an entity code),
+    ``"``, ``|`` (ends an edge label), a backtick (a Markdown label) and ``<``/``>`` (HTML) as Mermaid entity codes."""
+    s = visible(text).replace("#", "#35;")
+    for ch, code in (('"', "#quot;"), ("|", "#124;"), ("`", "#96;"), ("<", "#lt;"), (">", "#gt;")):
+        s = s.replace(ch, code)
+    return s
 
 
 def xacro_text(text: object) -> str:
@@ -51,7 +113,7 @@ def yaml_scalar_safe(text: str) -> Markup:
 
 def mdcell(text: object) -> str:
     """Text safe in a Markdown table cell: one line, pipes and markup escaped."""
-    s = " ".join(str(text).split())
+    s = visible(" ".join(str(text).split()))
     for ch in "\\|`*_[]<>":
         s = s.replace(ch, "\\" + ch)
     return s

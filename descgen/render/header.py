@@ -11,6 +11,8 @@ import hashlib
 import re
 from dataclasses import dataclass
 
+from .formatting import comment, visible
+
 MARK = "descgen spec-sha256="
 _HASHES = re.compile(r"descgen spec-sha256=([0-9a-f]{64}) content-sha256=([0-9a-f]{64})")
 
@@ -23,6 +25,14 @@ def _style(path: str) -> tuple[str, str]:
     return "# ", ""
 
 
+def shown(path: str, spec_display: str) -> str:
+    """The spec's path as the header comment of ``path`` can hold it: a file name may contain
+    a line break (which would end a ``#`` or ``//`` comment and start code) or ``--`` (which
+    ends an XML comment); control characters become visible escapes."""
+    text = visible(spec_display)
+    return comment(text) if _style(path)[0] == "<!-- " else text
+
+
 def digest(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
@@ -31,7 +41,7 @@ def add(path: str, body: str, spec_display: str, spec_hash: str) -> str:
     """``body`` with the header lines inserted (after an XML declaration, if any)."""
     open_, close = _style(path)
     lines = [
-        f"{open_}generated from {spec_display} by descgen — do not edit{close}",
+        f"{open_}generated from {shown(path, spec_display)} by descgen — do not edit{close}",
         f"{open_}{MARK}{spec_hash} content-sha256={digest(body)}{close}",
     ]
     if body.startswith("<?xml"):

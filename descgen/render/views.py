@@ -95,14 +95,23 @@ class Values:
     def __call__(self, name: str, value: str, source: str | None) -> str:
         if not self.xacro:
             return value
-        existing = self._index.get(name)
-        if existing is None:
-            prop = Prop(name, value, self.text(source))
-            self._index[name] = prop
-            self.props.append(prop)
-        elif existing.value != value:
-            raise ValueError(f"property {name} defined twice with different values")
-        return "${" + name + "}"
+        return "${" + self._property(name, value, source).name + "}"
+
+    def _property(self, stem: str, value: str, source: str | None) -> Prop:
+        """The property for ``value`` named ``stem``, or ``stem_2``, ``stem_3``... when another
+        value already took the name: names are built from spec names (link ``a_collision``'s
+        box and link ``a``'s collision box are both ``a_collision_size``), and xacro keeps only
+        the last definition of a name. The same stem and value always give the same property."""
+        name, k = stem, 1
+        while (existing := self._index.get(name)) is not None:
+            if existing.value == value:
+                return existing
+            k += 1
+            name = f"{stem}_{k}"
+        prop = Prop(name, value, self.text(source))
+        self._index[name] = prop
+        self.props.append(prop)
+        return prop
 
     def text(self, s: str | None) -> str | None:
         """Free text from the spec, in an attribute xacro evaluates."""

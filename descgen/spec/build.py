@@ -434,6 +434,7 @@ class Builder:
 
     def semantic(self, sem: s.SemanticSpec, poses: tuple[m.KnownPose, ...]) -> m.Semantic:
         base = ("semantic",)
+        self.unique_semantics(sem)
         groups = tuple(
             m.Group(
                 g.name,
@@ -486,6 +487,37 @@ class Builder:
             ),
             self.where(base),
         )
+
+    def unique_semantics(self, sem: s.SemanticSpec) -> None:
+        """SPEC024: MoveIt keys SRDF elements by name (a group state by name and group, a
+        disabled pair by its links), so a second one with the same key would silently
+        replace the first; refuse it at the second."""
+        keyed: list[tuple[str, list[tuple[object, str]]]] = [
+            ("groups", [(g.name, f"group '{g.name}'") for g in sem.groups]),
+            ("group_states", [((g.name, g.group), f"group state '{g.name}' of '{g.group}'") for g in sem.group_states]),
+            ("end_effectors", [(e.name, f"end effector '{e.name}'") for e in sem.end_effectors]),
+            ("virtual_joints", [(v.name, f"virtual joint '{v.name}'") for v in sem.virtual_joints]),
+            ("passive_joints", [(n, f"passive joint '{n}'") for n in sem.passive_joints]),
+            (
+                "disable_collisions",
+                [(frozenset((d.link1, d.link2)), f"disabled pair {d.link1}/{d.link2}") for d in sem.disable_collisions],
+            ),
+        ]
+        for section, entries in keyed:
+            seen: set[object] = set()
+            for i, (key, what) in enumerate(entries):
+                if key in seen:
+                    self.findings.append(
+                        Finding(
+                            "SPEC024",
+                            "error",
+                            f"{what} is declared twice in semantic.{section}",
+                            "remove or rename the second one (the SRDF keeps one per name)",
+                            f"semantic.{section}.{i}",
+                            self.where(("semantic", section, i)),
+                        )
+                    )
+                seen.add(key)
 
 
 def _replace_where(j: m.Joint, where: Where) -> m.Joint:

@@ -8,13 +8,16 @@ model in ``descgen/audit/rules``, shared with ``descgen audit``.
 from __future__ import annotations
 
 import math
+import re
 from typing import Annotated, Any, Literal
 
 from pydantic import (
+    AfterValidator,
     BaseModel,
     BeforeValidator,
     ConfigDict,
     Field,
+    JsonValue,
     StringConstraints,
     WithJsonSchema,
     model_validator,
@@ -27,9 +30,50 @@ Name = Annotated[str, StringConstraints(pattern=NAME_PATTERN, max_length=128)]
 """Link, joint, frame, controller and group names. ros2_control builds ``<joint>/<interface>``
 and parameter paths from them, so they are plain identifiers (see reference/conventions.md)."""
 
-Text = Annotated[str, StringConstraints(max_length=4000)]
+# Spec text reaches XML, Python, YAML, Markdown, Mermaid and DOT outputs. Templates escape
+# it for each; what no escaping can carry is refused here, so that validate accepts nothing
+# generate refuses: characters XML cannot hold at all (Text), and in one-line fields any
+# line break or control character (an XML attribute would read it back as a space).
+_NOT_XML = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\ud800-\udfff\ufffe\uffff]")
+_NOT_ONE_LINE = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff\ufffe\uffff]")
+
+
+def _shown(ch: str) -> str:
+    return repr(ch)[1:-1] if ch.isascii() else f"U+{ord(ch):04X}"
+
+
+def _text(value: str) -> str:
+    bad = _NOT_XML.search(value)
+    if bad:
+        raise error(
+            "SPEC020",
+            f"text contains the control character {_shown(bad.group())} at position {bad.start() + 1}",
+            "remove it: XML (URDF, SRDF, package.xml) cannot hold control characters",
+        )
+    return value
+
+
+def _one_line(value: object) -> object:
+    if isinstance(value, str):
+        bad = _NOT_ONE_LINE.search(value)
+        if bad:
+            raise error(
+                "SPEC021",
+                f"this value is one line of text, but it contains {_shown(bad.group())} at position {bad.start() + 1}",
+                "write it on one line without tabs or control characters "
+                "(an XML attribute reads a line break back as a space)",
+            )
+    return value
+
+
+Text = Annotated[str, StringConstraints(max_length=4000), AfterValidator(_text)]
+OneLine = Annotated[str, BeforeValidator(_one_line)]
+"""Free text that is one line: names of visuals and materials, file names, citations."""
 Source = Annotated[
-    str, BeforeValidator(lambda v: str(v) if isinstance(v, int) else v), StringConstraints(max_length=200)
+    str,
+    BeforeValidator(lambda v: str(v) if isinstance(v, int) else v),
+    StringConstraints(max_length=200),
+    BeforeValidator(_one_line),
 ]
 
 _AXES = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
@@ -132,7 +176,7 @@ class SphereSpec(_Round):
 
 
 class MeshSpec(Base):
-    filename: Annotated[str, StringConstraints(min_length=1, max_length=1000)]
+    filename: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]
     scale: tuple[Number, Number, Number] = (1.0, 1.0, 1.0)
 
 
@@ -155,9 +199,9 @@ class GeometrySpec(Base):
 
 
 class MaterialSpec(Base):
-    name: Annotated[str, StringConstraints(min_length=1, max_length=200)]
+    name: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)]
     rgba: tuple[Number, Number, Number, Number] | None = None
-    texture: Annotated[str, StringConstraints(max_length=1000)] | None = None
+    texture: Annotated[OneLine, StringConstraints(max_length=1000)] | None = None
 
     @model_validator(mode="after")
     def _colour(self) -> MaterialSpec:
@@ -173,15 +217,15 @@ class MaterialSpec(Base):
 
 
 class VisualSpec(Base):
-    name: Annotated[str, StringConstraints(max_length=200)] | None = None
+    name: Annotated[OneLine, StringConstraints(max_length=200)] | None = None
     origin: Origin = Origin()
     geometry: GeometrySpec
-    material: Annotated[str, StringConstraints(min_length=1, max_length=200)] | None = None
+    material: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)] | None = None
     source: Source | None = None
 
 
 class CollisionSpec(Base):
-    name: Annotated[str, StringConstraints(max_length=200)] | None = None
+    name: Annotated[OneLine, StringConstraints(max_length=200)] | None = None
     origin: Origin = Origin()
     geometry: GeometrySpec
     source: Source | None = None
@@ -292,11 +336,28 @@ class PartInstance(Base):
     source: Source | None = None
 
 
+# The Xacro writes a part as <xacro:macro name="PART">, called as <xacro:PART .../>: a part
+# named like one of xacro's own tags would be read as that tag (xacro 2.x, process_doc).
+XACRO_TAGS = frozenset(
+    ("arg", "attribute", "call", "element", "if", "include", "insert_block", "macro", "property", "unless")
+)
+
+
+def _not_xacro_tag(name: str) -> str:
+    if name in XACRO_TAGS:
+        raise error(
+            "SPEC022",
+            f"part name '{name}' is a xacro tag; <xacro:{name}> would not call the part's macro",
+            f"rename the part (e.g. {name}_part)",
+        )
+    return name
+
+
 class PartSpec(Base):
     """A part built more than once (left/right wheel, fingers): declared once, instanced
     with per-instance names and origin. The Xacro output makes it one macro."""
 
-    name: Name
+    name: Annotated[Name, AfterValidator(_not_xacro_tag)]
     link: LinkBody = LinkBody()
     joint: JointBody
     instances: Annotated[list[PartInstance], Field(min_length=1)]
@@ -333,7 +394,7 @@ class ControlJointSpec(Base):
 
 class HardwareSpec(Base):
     plugin: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")] = "mock_components/GenericSystem"
-    params: dict[Name, str | int | float | bool] = {}
+    params: dict[Name, Annotated[str | int | float | bool, BeforeValidator(_one_line)]] = {}
 
 
 ParamValue = Any
@@ -403,7 +464,7 @@ class VirtualJointSpec(Base):
 class DisabledPairSpec(Base):
     link1: Name
     link2: Name
-    reason: Annotated[str, StringConstraints(max_length=200)] = "User"
+    reason: Annotated[OneLine, StringConstraints(max_length=200)] = "User"
 
 
 class SemanticSpec(Base):
@@ -460,15 +521,54 @@ class RangeSpec(Base):
     max: Raw | None = None
 
 
+# What catkin_pkg (colcon's package.xml parser) accepts, so that generate's package.xml
+# check cannot refuse what validate passed: its email and version expressions, verbatim
+# (the version without leading zeros, which catkin_pkg warns about).
+_CATKIN_EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
+_CATKIN_VERSION = re.compile(r"^(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)\.(0|[1-9][0-9]*)$")
+
+
+def _package_field(what: str, pattern: re.Pattern[str] | None, hint: str) -> tuple[AfterValidator, Any]:
+    """The check (a finding with a hint, not pydantic's pattern message) and, for editors,
+    the same rule in the JSON Schema."""
+
+    def check(value: str) -> str:
+        if not value.strip() or (pattern is not None and not pattern.fullmatch(value)):
+            raise error("SPEC025", f"{value!r} is not a package {what} that catkin_pkg accepts", hint)
+        return value
+
+    shown: dict[str, JsonValue] = {"pattern": pattern.pattern} if pattern else {"minLength": 1, "pattern": r"\S"}
+    return AfterValidator(check), Field(json_schema_extra=shown)
+
+
 class PackageSpec(Base):
     """The generated ament package's metadata (package.xml)."""
 
-    version: Annotated[str, StringConstraints(pattern=r"^\d+\.\d+\.\d+$")] = "0.1.0"
-    maintainer: Annotated[str, StringConstraints(min_length=1, max_length=200)] = "descgen user"
-    email: Annotated[str, StringConstraints(pattern=r"^[^@\s<>\"']+@[^@\s<>\"']+\.[^@\s<>\"']+$")] = (
-        "maintainer@example.com"
+    version: Annotated[str, *_package_field("version", _CATKIN_VERSION, "write MAJOR.MINOR.PATCH, e.g. 0.1.0")] = (
+        "0.1.0"
     )
-    license: Annotated[str, StringConstraints(min_length=1, max_length=200)] = "Apache-2.0"
+    maintainer: Annotated[
+        OneLine, StringConstraints(max_length=200), *_package_field("maintainer", None, "write a name")
+    ] = "descgen user"
+    email: Annotated[
+        str, *_package_field("email", _CATKIN_EMAIL, "write an address like name@example.com (no | ! # or spaces)")
+    ] = "maintainer@example.com"
+    license: Annotated[
+        OneLine,
+        StringConstraints(max_length=200),
+        *_package_field("license", None, "write an SPDX id, e.g. Apache-2.0"),
+    ] = "Apache-2.0"
+
+
+def _some_links(links: list[LinkSpec]) -> list[LinkSpec]:
+    # parts and sensors hang below a link of links:, so a robot needs at least one there
+    if not links:
+        raise error(
+            "SPEC023",
+            "the robot has no links (a URDF needs at least one <link>)",
+            "add links: with the root link, e.g. - name: base_link",
+        )
+    return links
 
 
 class RobotSpec(Base):
@@ -480,7 +580,9 @@ class RobotSpec(Base):
     require_sources: bool = False
     plausibility: dict[str, RangeSpec] = {}
     materials: list[MaterialSpec] = []
-    links: list[LinkSpec] = []
+    links: Annotated[
+        list[LinkSpec], AfterValidator(_some_links), Field(validate_default=True, json_schema_extra={"minItems": 1})
+    ] = []
     joints: list[JointSpec] = []
     parts: list[PartSpec] = []
     sensors: list[SensorSpec] = []

@@ -63,25 +63,61 @@ def _bucket(ms: float) -> str:
     return f">={HISTOGRAM_MS[-1]}"
 
 
+MAX_WAIT_S = 3600.0  # --wait and --max-age: beyond an hour the answer is the same
+MAX_METADATA = 4 * 1024 * 1024  # a rosbag2 metadata.yaml is kilobytes, even for long recordings
+
+
+def shown(name: str, limit: int = 80) -> str:
+    """A name from a recording as it is printed: escaped (no control characters reach the
+    terminal) and shortened."""
+    text = name.encode("unicode_escape").decode("ascii")
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _unusable(code: str, path: Path, message: str, hint: str) -> InputError:
+    return InputError([Finding(code, "error", message, hint, "file", Where(str(path)))])
+
+
+def _one_line(exc: BaseException) -> str:
+    """A library's error text on one line (YAML errors span several)."""
+    return shown(" ".join(str(exc).split()) or type(exc).__name__, 300)
+
+
+def _bag_folder(path: Path) -> Path:
+    """The rosbag2 folder ``path`` names, checked for type and size before rosbags reads it."""
+    hint = "give a rosbag2 folder (metadata.yaml with .mcap or .db3)"
+    if path.is_file() and (path.parent / "metadata.yaml").is_file():
+        path = path.parent  # the storage file or metadata.yaml inside a recording
+    if not path.exists():
+        raise _unusable("BAG014", path, "no such recording", hint)
+    if not path.is_dir():
+        raise _unusable("BAG014", path, "is a file, not a rosbag2 folder", hint)
+    meta = path / "metadata.yaml"
+    if not meta.exists():
+        raise _unusable("BAG014", path, "holds no metadata.yaml, so it is not a rosbag2 folder", hint)
+    if not meta.is_file():
+        raise _unusable("BAG014", meta, "is not a regular file", hint)
+    size = meta.stat().st_size
+    if size > MAX_METADATA:
+        raise _unusable(
+            "BAG014", meta, f"is {size / 1e6:.1f} MB; a rosbag2 metadata.yaml is at most {MAX_METADATA >> 20} MB", hint
+        )
+    return path
+
+
 def _open(path: Path) -> Any:
     from rosbags.rosbag2 import Reader
 
-    bag = path.parent if path.is_file() and (path.parent / "metadata.yaml").is_file() else path
+    bag = _bag_folder(path)
     try:
         reader = Reader(bag)
         reader.open()
-    except Exception as exc:  # rosbags raises ReaderError and OS errors on unusable input
-        raise InputError(
-            [
-                Finding(
-                    "BAG001",
-                    "error",
-                    f"cannot read the recording: {exc}",
-                    "give a rosbag2 folder (metadata.yaml with .mcap or .db3)",
-                    "file",
-                    Where(str(path)),
-                )
-            ]
+    except Exception as exc:  # rosbags raises ReaderError, YAML and OS errors on unusable input
+        raise _unusable(
+            "BAG001",
+            path,
+            f"cannot read the recording: {_one_line(exc)}",
+            "give a rosbag2 folder (metadata.yaml with .mcap or .db3)",
         ) from None
     return reader
 
@@ -111,10 +147,7 @@ def audit(
             else [
                 c
                 for c in connections
-                if c.topic not in TF_TOPICS
-                and c.msgtype in ts.types
-                and "header" in getattr(ts.types[c.msgtype], "__dataclass_fields__", {})
-                and c.msgtype != "sensor_msgs/msg/JointState"
+                if _has_header(ts, c.topic, c.msgtype) and c.msgtype != "sensor_msgs/msg/JointState"
             ]
         )
         missing = sorted(set(topics) - {c.topic for c in connections})
@@ -124,13 +157,21 @@ def audit(
                     Finding(
                         "BAG002",
                         "error",
-                        f"topic {missing[0]} is not in the recording",
+                        f"topic {shown(missing[0])} is not in the recording",
                         "list topics with `ros2 bag info`",
                         "file",
                         Where(str(path)),
                     )
                 ]
             )
+        for c in chosen:
+            if not _has_header(ts, c.topic, c.msgtype):
+                raise _unusable(
+                    "BAG013",
+                    path,
+                    f"topic {shown(c.topic)} ({shown(c.msgtype)}) has no header to look up",
+                    "name a sensor topic whose messages have a std_msgs/Header",
+                )
         tf_conns = [c for c in connections if c.topic in TF_TOPICS]
         tf_msgs: list[tuple[int, bool, Any]] = []
         sensors: list[tuple[int, str, Any]] = []
@@ -143,15 +184,12 @@ def audit(
     except InputError:
         raise
     except Exception as exc:  # a corrupt recording
-        raise InputError(
-            [
-                Finding(
-                    "BAG001", "error", f"cannot read the recording: {exc}", "check the file", "file", Where(str(path))
-                )
-            ]
+        raise _unusable(
+            "BAG001", path, f"cannot read the recording: {_one_line(exc)}", "check the recording's files"
         ) from None
     finally:
         reader.close()
+    _check_lookups(path, target, topics, tf_msgs, sensors)
     tf_msgs.sort(key=lambda m: m[0])
     sensors.sort(key=lambda m: m[0] + wait_ns)
     buf = BufferCore(cache_ns)
@@ -191,6 +229,44 @@ def audit(
                 }
             )
     return report
+
+
+def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
+    return (
+        topic not in TF_TOPICS
+        and msgtype in ts.types
+        and "header" in getattr(ts.types[msgtype], "__dataclass_fields__", {})
+    )
+
+
+def _check_lookups(
+    path: Path,
+    target: str,
+    topics: tuple[str, ...],
+    tf_msgs: list[tuple[int, bool, Any]],
+    sensors: list[tuple[int, str, Any]],
+) -> None:
+    """Refuse an audit that would pass without looking anything up."""
+    if not sensors:
+        what = f"the topics {', '.join(shown(t) for t in topics)} hold" if topics else "the recording has"
+        raise _unusable(
+            "BAG010",
+            path,
+            f"nothing to look up: {what} no sensor messages with a header",
+            "name a recorded sensor topic with --topic (/tf, /tf_static and /joint_states are not looked up)",
+        )
+    frames = {m.header.frame_id for _, _, m in sensors}
+    for _, _, msg in tf_msgs:
+        for t in msg.transforms:
+            frames.update((t.header.frame_id, t.child_frame_id))
+    if target not in frames:
+        known = ", ".join(shown(f, 40) for f in sorted(frames)[:8]) + (", ..." if len(frames) > 8 else "")
+        raise _unusable(
+            "BAG012",
+            path,
+            f"--target frame '{shown(target)}' appears nowhere in the recording (frames: {known})",
+            "name a frame of the transform tree, e.g. odom or base_link",
+        )
 
 
 def _lookup(

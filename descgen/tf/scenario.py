@@ -15,12 +15,15 @@ Faults (each applied inside a time window so a test can check the right messages
 from __future__ import annotations
 
 import math
+import shutil
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..findings import Finding, InputError, Where
 from ..kinematics import joint_transform
 from ..model import Robot
 from .buffer import quat_from_matrix
@@ -28,6 +31,24 @@ from .buffer import quat_from_matrix
 FAULTS = ("camera-future", "odom-gap", "unknown-frame")
 WINDOWS = {"camera-future": (2.0, 3.0), "odom-gap": (4.0, 5.0), "unknown-frame": (6.0, 7.0)}
 NS = 1_000_000_000
+# a scenario is a short test recording: at least a few controller cycles, and short enough
+# to be written in seconds (ten minutes is ~60 000 messages per topic)
+MIN_DURATION_S = 0.1
+MAX_DURATION_S = 600.0
+
+
+def _refuse(code: str, out: Path, message: str, hint: str = "choose another --out") -> InputError:
+    return InputError([Finding(code, "error", message, hint, "option", Where(str(out)))])
+
+
+def check_out(out: Path) -> None:
+    """``out`` must be a new folder in an existing, writable folder."""
+    if out.exists() or out.is_symlink():
+        raise _refuse("BAG003", out, f"{out} exists; a recording is written to a new folder")
+    parent = out.parent
+    if not parent.is_dir():
+        what = "is not a folder" if parent.exists() else "does not exist"
+        raise _refuse("BAG011", out, f"cannot write {out}: {parent} {what}")
 
 
 @dataclass(frozen=True)
@@ -65,7 +86,33 @@ def joint_values(robot: Robot, t: float) -> dict[str, float]:
 def write(
     robot: Robot, out: Path, faults: tuple[str, ...] = (), duration: float = 10.0, storage: str = "mcap"
 ) -> dict[str, int]:
-    """Write the recording; returns message counts per topic."""
+    """Write the recording to the new folder ``out``, whole or not at all (it is written
+    beside ``out`` and renamed into place); returns message counts per topic."""
+    check_out(out)
+    if not MIN_DURATION_S <= duration <= MAX_DURATION_S:  # the library is called directly too
+        raise _refuse(
+            "UNIT021",
+            out,
+            f"duration {duration:g} s is outside {MIN_DURATION_S:g} s to {MAX_DURATION_S:g} s",
+            "give a shorter or longer --duration",
+        )
+    try:
+        staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    except OSError as exc:
+        raise _refuse("BAG011", out, f"cannot write in {out.parent}: {exc.strerror or exc}") from None
+    from rosbags.rosbag2 import WriterError
+
+    try:
+        counts = _write(robot, staging / out.name, faults, duration, storage)
+        (staging / out.name).rename(out)
+    except (OSError, WriterError) as exc:  # disk full, permissions, out created meanwhile
+        raise _refuse("BAG011", out, f"cannot write {out}: {getattr(exc, 'strerror', None) or exc}") from None
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return counts
+
+
+def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, storage: str) -> dict[str, int]:
     from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
     from rosbags.rosbag2 import StoragePlugin, Writer
     from rosbags.typesys import Stores, get_typestore

@@ -9,7 +9,7 @@ from ...findings import Finding
 from ...model import Collision, Link, Robot, Visual
 from ..registry import at, rule
 from .density import PLACEHOLDER
-from .inertia import _moving_links
+from .inertia import _moving_links, welded_count
 from .scale import dims
 
 
@@ -23,9 +23,9 @@ def moving_link_without_collision(robot: Robot) -> Iterator[Finding]:
     part you can see.
     """
     moving = _moving_links(robot)
+    colliding = welded_count(robot, lambda other: other.collisions)
     for lk in robot.links:
-        body = robot.body_of(lk.name)
-        collides = any(other.collisions for n in body if (other := robot.link(n)) is not None)
+        collides = colliding.get(lk.name, 0) > 0
         if lk.name in moving and lk.visuals and not collides:
             yield at(
                 "GEOM001",

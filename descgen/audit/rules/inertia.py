@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
 
@@ -22,6 +22,22 @@ def _moving_links(robot: Robot) -> set[str]:
         moving.add(name)
         todo += [j.child for j in robot.child_joints(name) if j.child]
     return moving
+
+
+def welded_count(robot: Robot, has: Callable[[Link], object]) -> dict[str, int]:
+    """Per link name: how many links of its rigid body (welded by fixed joints) satisfy ``has``.
+
+    Each body is visited once, so 10,000 welded links cost linear time, not a scan of the
+    whole body per link."""
+    counts: dict[str, int] = {}
+    for lk in robot.links:
+        if lk.name in counts:
+            continue
+        body = robot.body_of(lk.name)
+        n = sum(1 for name in body if (other := robot.link(name)) is not None and has(other))
+        for name in body:
+            counts[name] = n
+    return counts
 
 
 def own_bodies(robot: Robot) -> set[str]:
@@ -91,10 +107,10 @@ def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
     static-torque check ignore it.
     """
     bodies = own_bodies(robot)
+    with_inertial = welded_count(robot, lambda other: other.inertial is not None)
     for name in sorted(_moving_links(robot)):
         lk = robot.link(name)
-        body = robot.body_of(name)
-        weighed = any(other.inertial is not None for n in body if (other := robot.link(n)) is not None)
+        weighed = with_inertial.get(name, 0) > 0
         if lk is not None and not weighed and _carries_geometry(robot, name):
             welded = "" if name in bodies else " (welded to a moving link)"
             yield at(
@@ -227,11 +243,13 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     The mass sits where there is no material: usually an origin in the wrong frame or unit.
     """
+    colliding = welded_count(robot, lambda other: other.collisions)
     for lk in robot.links:
         i = lk.inertial
         if i is None or i.mass is None or i.mass <= 0:
             continue
-        if any(other.collisions for n in robot.body_of(lk.name) - {lk.name} if (other := robot.link(n)) is not None):
+        first = robot.link(lk.name)  # the body counts names, and a repeated name is its first link
+        if colliding.get(lk.name, 0) - (1 if first is not None and first.collisions else 0) > 0:
             continue  # the body's material is partly on welded links: one box says too little
         box = _aabb(robot, lk.name)
         if box is None:

@@ -1,0 +1,466 @@
+"""Hostile option values, recordings and trajectories (issue 18): every one ends in exit 2
+with a one-line `FILE:LINE:COL: error[CODE]` message and a hint, quickly, with nothing written;
+never a traceback, a hang, or an "ok" that checked nothing."""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import os
+import pickle
+import select
+import signal
+import sqlite3
+import time
+import traceback
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from descgen import units
+from descgen.cli import main
+from descgen.tf import scenario
+
+from .conftest import EXAMPLE, ROOT
+from .helpers import errors_of, line_of, plant, run_cli
+
+# warm the libraries the commands import lazily: every child forked by `within` inherits them
+with contextlib.suppress(ImportError):
+    import matplotlib.pyplot  # noqa: F401
+import rosbags.rosbag2
+import rosbags.typesys  # noqa: F401
+
+import descgen.control.run
+import descgen.tf.bagaudit  # noqa: F401
+
+SPEC = str(EXAMPLE)
+READY = ROOT / "specs" / "trajectories" / "ready.yaml"
+
+
+def within(seconds: float, fn: Callable[[], Any]) -> tuple[Any, str, str]:
+    """``fn()`` in a forked copy of this process: (its value, its stdout, its stderr).
+
+    Fails if it has not returned in ``seconds``: a big-integer power holds the GIL inside one
+    C call, so neither a thread nor a signal could stop it; a child process can be killed.
+    Whatever ``fn`` raises fails the test with the child's traceback.
+    """
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: run, send the outcome, and leave without pytest's exit handlers
+        os.close(read_end)
+        try:
+            out, err = io.StringIO(), io.StringIO()
+            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+                try:
+                    outcome: tuple[str, Any] = ("ok", fn())
+                except BaseException:
+                    outcome = ("raised", traceback.format_exc())
+            with os.fdopen(write_end, "wb") as pipe:
+                pipe.write(pickle.dumps((outcome, out.getvalue(), err.getvalue())))
+        finally:
+            os._exit(0)
+    os.close(write_end)
+    deadline = time.monotonic() + seconds
+    data = b""
+    with os.fdopen(read_end, "rb") as pipe:
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([pipe], [], [], left)[0]:
+                os.kill(pid, signal.SIGKILL)
+                os.waitpid(pid, 0)
+                pytest.fail(f"still running after {seconds} s")
+            chunk = os.read(pipe.fileno(), 1 << 16)
+            if not chunk:
+                break
+            data += chunk
+    os.waitpid(pid, 0)
+    (status, value), out_text, err_text = pickle.loads(data)
+    assert status == "ok", value
+    return value, out_text, err_text
+
+
+def cli(*argv: str, bounded: bool = False) -> tuple[int, str, str]:
+    """``descgen ARGV`` in process, through ``main``: (exit code, stdout, stderr).
+    ``bounded``: in a forked child that must finish within 30 s (for input that once hung)."""
+    if bounded:
+        code, out, err = within(30.0, lambda: main(list(argv)))
+    else:
+        out_buf, err_buf = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out_buf), contextlib.redirect_stderr(err_buf):
+            code = main(list(argv))
+        out, err = out_buf.getvalue(), err_buf.getvalue()
+    assert "Traceback" not in err
+    return code, out, err
+
+
+def refused(code: str, *argv: str, bounded: bool = False) -> str:
+    """Run, expect exit 2 with exactly one finding of ``code`` and its hint; return stderr."""
+    rc, _out, err = cli(*argv, bounded=bounded)
+    lines = err.splitlines()
+    assert rc == 2, err
+    assert len(lines) == 2 and f"error[{code}]" in lines[0] and lines[1].startswith("  hint: "), err
+    return err
+
+
+# --------------------------------------------------------------------------- quantities
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "9**9**9 kg",  # chained power: 9**(9**9) has 370 million digits
+        "2^3^4^5 kg",  # the same with carets (pint reads ^ as **)
+        "(9**99)**99**2 kg",
+        "(9**999)**999 kg",  # a power of a power
+        "9⁹⁹⁹⁹⁹⁹⁹⁹ kg",  # superscripts become 9**(99999999) inside pint
+        "2**(9**9) kg",  # an exponent that is itself an expression
+        "10**1000000 kg",  # one plain, huge exponent
+        "7" * 60 + " kg",  # too many digits
+        "1 " + "kg*" * 80 + "kg",  # too long
+    ],
+)
+def test_hostile_quantity_text_is_refused_fast(text: str) -> None:
+    def read() -> str:
+        with pytest.raises(units.QuantityError) as exc:
+            units.to_si(text, "mass")
+        return exc.value.code
+
+    assert within(2.0, read)[0] == "UNIT020"
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "expected"),
+    [
+        ("0.01 kg*m^2", "inertia", 0.01),
+        ("2 kg*m**2", "inertia", 2.0),
+        ("1200 g*cm^2", "inertia", 1.2e-4),  # 1.2 kg * 1e-4 m^2
+        ("(10 mm)^2 * 3 kg", "inertia", 3e-4),  # (0.01 m)^2 * 3 kg
+        ("3 kg m² / s²", "torque", 3.0),  # pint turns the superscripts into **(2)
+        ("10^-3 km", "length", 1.0),
+        ("10**+3 mm", "length", 1.0),
+        ("1.5e-3 km", "length", 1.5),  # exponent notation is not a power
+        ("100 1/s", "linear_stiffness_gain", 100.0),
+        ("2 m/s**2 * 3 s", "linear_velocity", 6.0),
+    ],
+)
+def test_unit_powers_and_exponent_notation_still_read(text: str, kind: str, expected: float) -> None:
+    assert units.to_si(text, kind) == pytest.approx(expected, rel=1e-12)
+
+
+def test_hostile_power_in_a_spec_is_a_located_error(tmp_path: Path) -> None:
+    text = plant("mass: {value: 28.0 kg, source: M06}", "mass: {value: 9**9**9 kg, source: M06}")
+    found, _, _ = within(10.0, lambda: errors_of(text, tmp_path))
+    hits = [f for f in found if f.code == "UNIT020"]
+    assert hits and hits[0].where.line == line_of(text, "9**9**9 kg"), found
+
+
+# --------------------------------------------------------------------------- tf-audit
+
+
+@pytest.fixture(scope="module")
+def recording(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    bag = tmp_path_factory.mktemp("bags") / "rec"
+    assert cli("tf-scenario", SPEC, "--out", str(bag), "--duration", "1 s")[0] == 0
+    return bag
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "code"),
+    [
+        ("--wait", "1e300 s", "UNIT021"),  # crashed: 1e309 ns is not an integer
+        ("--wait", "-1 s", "UNIT021"),
+        ("--wait", "2 h", "UNIT021"),
+        ("--wait", "9**9**9 s", "UNIT020"),  # hung in pint
+        ("--wait", "nan s", "UNIT002"),
+        ("--max-age", "1e300 s", "UNIT021"),
+        ("--max-age", "3 kg", "UNIT003"),
+        ("--wait", "50", "UNIT001"),  # no unit: 50 ms or 50 s? (only --duration reads bare seconds)
+    ],
+)
+def test_tf_audit_time_options_are_bounded(recording: Path, option: str, value: str, code: str) -> None:
+    err = refused(code, "tf-audit", str(recording), "--target", "odom", option, value, bounded=True)
+    assert err.startswith(f"<command line>: error[{code}]: {option}:"), err
+
+
+def test_tf_audit_good_recording_still_passes(recording: Path) -> None:
+    rc, out, err = cli("tf-audit", str(recording), "--target", "base_footprint", "--wait", "50 ms")
+    # 1 s of camera at 30 Hz (frames at 5 ms + k/30 s, k = 0..29), each looked up once
+    assert rc == 0 and out.startswith("30 lookups into 'base_footprint': 30 ok"), out + err
+
+
+def _write_bag(path: Path, topics: dict[str, str], messages: list[tuple[str, Any]]) -> None:
+    """A rosbag2 folder with the given (topic -> type) connections and messages, by rosbags."""
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as w:
+        conns = {t: w.add_connection(t, ty, typestore=ts) for t, ty in topics.items()}
+        for i, (topic, msg) in enumerate(messages):
+            w.write(conns[topic], 1_000 + i, ts.serialize_cdr(msg, topics[topic]))
+
+
+def _tf_message() -> Any:
+    from rosbags.typesys import Stores, get_typestore
+
+    t = get_typestore(Stores.ROS2_JAZZY).types
+    tr = t["geometry_msgs/msg/TransformStamped"](
+        header=t["std_msgs/msg/Header"](stamp=t["builtin_interfaces/msg/Time"](sec=1, nanosec=0), frame_id="odom"),
+        child_frame_id="base_link",
+        transform=t["geometry_msgs/msg/Transform"](
+            translation=t["geometry_msgs/msg/Vector3"](x=0.0, y=0.0, z=0.0),
+            rotation=t["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0),
+        ),
+    )
+    return t["tf2_msgs/msg/TFMessage"](transforms=[tr])
+
+
+def test_tf_audit_with_nothing_to_look_up_is_not_ok(tmp_path: Path) -> None:
+    only_tf = tmp_path / "only_tf"
+    _write_bag(
+        only_tf,
+        {"/tf": "tf2_msgs/msg/TFMessage", "/camera/camera_info": "sensor_msgs/msg/CameraInfo"},
+        [("/tf", _tf_message())],
+    )
+    # no sensor message at all (the camera topic is recorded but empty): was "0 lookups ... ok", exit 0
+    err = refused("BAG010", "tf-audit", str(only_tf), "--target", "odom")
+    assert "nothing to look up" in err
+    err = refused("BAG010", "tf-audit", str(only_tf), "--target", "odom", "--topic", "/camera/camera_info")
+    assert "/camera/camera_info" in err
+    # /tf has no header to look up: was a traceback-like "cannot read the recording"
+    err = refused("BAG013", "tf-audit", str(only_tf), "--target", "odom", "--topic", "/tf")
+    assert "/tf" in err
+
+
+def test_tf_audit_topic_or_target_not_in_recording(recording: Path) -> None:
+    err = refused("BAG002", "tf-audit", str(recording), "--target", "odom", "--topic", "/nope")
+    assert "/nope" in err
+    # a target frame nobody publishes: every lookup "disconnected" is a typo, not a finding (was exit 1)
+    err = refused("BAG012", "tf-audit", str(recording), "--target", "odomm")
+    assert "'odomm'" in err and "base_link" in err
+
+
+def _corrupt(kind: str, recording: Path, tmp: Path) -> Path:
+    import shutil
+
+    if kind == "missing":
+        return tmp / "absent"
+    if kind == "file":
+        (tmp / "bag.mcap").write_bytes(b"\x89MCAP0\r\n")
+        return tmp / "bag.mcap"
+    if kind == "empty":
+        (tmp / "empty").mkdir()
+        return tmp / "empty"
+    bag = tmp / "bag"
+    shutil.copytree(recording, bag)
+    data = next(bag.glob("*.mcap"))
+    if kind == "garbage-metadata":
+        (bag / "metadata.yaml").write_text("rosbag2_bagfile_information: {{{ [\n")
+    elif kind == "metadata-not-a-mapping":
+        (bag / "metadata.yaml").write_text("rosbag2_bagfile_information: 5\n")
+    elif kind == "metadata-folder":
+        (bag / "metadata.yaml").unlink()
+        (bag / "metadata.yaml").mkdir()
+    elif kind == "truncated-mcap":
+        data.write_bytes(data.read_bytes()[: data.stat().st_size // 2])
+    elif kind == "garbage-mcap":
+        data.write_bytes(bytes(range(256)) * 20)
+    elif kind == "missing-mcap":
+        data.unlink()
+    return bag
+
+
+@pytest.mark.parametrize(
+    ("kind", "code"),
+    [
+        ("missing", "BAG014"),
+        ("file", "BAG014"),
+        ("empty", "BAG014"),
+        ("metadata-folder", "BAG014"),
+        ("garbage-metadata", "BAG001"),
+        ("metadata-not-a-mapping", "BAG001"),
+        ("truncated-mcap", "BAG001"),
+        ("garbage-mcap", "BAG001"),
+        ("missing-mcap", "BAG001"),
+    ],
+)
+def test_corrupt_recordings_are_input_errors(recording: Path, tmp_path: Path, kind: str, code: str) -> None:
+    bag = _corrupt(kind, recording, tmp_path)
+    err = refused(code, "tf-audit", str(bag), "--target", "odom")
+    assert err.startswith(str(bag)), err
+
+
+def test_corrupt_sqlite_recording_is_an_input_error(tmp_path: Path) -> None:
+    bag = tmp_path / "sq"
+    assert cli("tf-scenario", SPEC, "--out", str(bag), "--duration", "0.5", "--storage", "sqlite3")[0] == 0
+    db = next(bag.glob("*.db3"))
+    with sqlite3.connect(db) as con:  # the oracle: sqlite itself reads it before we break it
+        assert con.execute("select count(*) from messages").fetchone()[0] > 0
+    db.write_bytes(b"SQLite format 3\x00" + b"\xff" * 2000)
+    refused("BAG001", "tf-audit", str(bag), "--target", "odom")
+
+
+# --------------------------------------------------------------------------- tf-scenario
+
+
+@pytest.mark.parametrize(
+    ("duration", "code"),
+    [("abc", "UNIT002"), ("nan", "UNIT002"), ("1e9", "UNIT021"), ("-2 s", "UNIT021"), ("3 kg", "UNIT003")],
+)
+def test_tf_scenario_duration_is_checked(tmp_path: Path, duration: str, code: str) -> None:
+    out = tmp_path / "rec"
+    err = refused(code, "tf-scenario", SPEC, "--out", str(out), "--duration", duration, bounded=True)
+    assert "--duration" in err and not out.exists() and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("duration", ["2 s", "2s", "2", "2000 ms"])
+def test_tf_scenario_duration_with_or_without_unit(tmp_path: Path, duration: str) -> None:
+    rc, out, err = cli("tf-scenario", SPEC, "--out", str(tmp_path / "rec"), "--duration", duration)
+    # 2 s at the spec's update_rate of 100 Hz, camera at 30 Hz
+    assert rc == 0 and "/joint_states 200, /tf 200, /camera/camera_info 60" in out, out + err
+
+
+def test_tf_scenario_out_under_a_file_or_missing_folder(tmp_path: Path) -> None:
+    (tmp_path / "afile").write_text("x")
+    err = refused("BAG011", "tf-scenario", SPEC, "--out", str(tmp_path / "afile" / "rec"))
+    assert "is not a folder" in err
+    err = refused("BAG011", "tf-scenario", SPEC, "--out", str(tmp_path / "no" / "rec"))
+    assert "does not exist" in err
+    refused("BAG003", "tf-scenario", SPEC, "--out", str(tmp_path / "afile"))
+    assert [p.name for p in tmp_path.iterdir()] == ["afile"]
+
+
+def test_tf_scenario_failing_midway_leaves_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    real = scenario._write
+
+    def full_disk(robot: Any, out: Path, *args: Any) -> dict[str, int]:
+        real(robot, out, *args)  # the whole recording is on disk, then the disk "fills"
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(scenario, "_write", full_disk)
+    err = refused("BAG011", "tf-scenario", SPEC, "--out", str(tmp_path / "rec"), "--duration", "0.5 s")
+    assert "No space left on device" in err
+    assert list(tmp_path.iterdir()) == []  # neither rec nor a staging folder
+
+
+# --------------------------------------------------------------------------- control
+
+
+def control(tmp_path: Path, trajectory: Path, *extra: str, bounded: bool = False) -> tuple[int, str]:
+    """``descgen control`` on the example (its committed package), evidence into tmp_path."""
+    out_dir = str(tmp_path / "ev")
+    rc, out, err = cli("control", SPEC, "--trajectory", str(trajectory), "--out", out_dir, *extra, bounded=bounded)
+    return rc, out + err
+
+
+POINT = '{time_from_start: "1 s", positions: ["0 deg"]}'
+
+
+@pytest.mark.parametrize(
+    ("body", "code", "needle"),
+    [
+        ("joints: [elbow_joint]\npoints: 5\n", "CTRL020", "points: 5"),  # was a TypeError traceback
+        (f"joints: elbow_joint\npoints:\n  - {POINT}\n", "CTRL030", "joints: elbow_joint"),
+        (f"joints: [[1]]\npoints:\n  - {POINT}\n", "CTRL020", "[1]]"),
+        ('joints: [elbow_joint]\npoints:\n  - {time_from_start: "1 s", positions: "0 deg"}\n', "CTRL020", '"0 deg"}'),
+        ("joints: [elbow_joint]\npoints:\n  - 7\n", "CTRL020", "- 7"),
+        ('joints: [elbow_joint]\npoints:\n  - {positions: ["0 deg"]}\n', "CTRL020", "- {positions"),
+        ("joints: [elbow_joint]\npoints: []\n", "CTRL030", "[]"),  # was "ok": nothing ran
+        ("joints: [elbow_joint]\n", "CTRL030", "controller"),
+        (
+            f'joints: [elbow_joint]\npoints:\n  - {POINT}\n  - {{time_from_start: "0.5 s", positions: ["0 deg"]}}\n',
+            "CTRL031",
+            '"0.5 s"',
+        ),  # unsorted: was "ok"
+        (f"joints: [elbow_joint]\npoints:\n  - {POINT}\n  - {POINT}\n", "CTRL031", 5),  # the second point
+        ('joints: [elbow_joint]\npoints:\n  - {time_from_start: "-1 s", positions: ["0 deg"]}\n', "UNIT021", '"-1 s"'),
+        ('joints: [elbow_joint]\npoints:\n  - {time_from_start: "1e9 s", positions: ["0 deg"]}\n', "UNIT021", '"1e9'),
+        ('joints: [elbow_joint]\npoints:\n  - {time_from_start: "9**9**9 s", positions: ["0 deg"]}\n', "UNIT020", '"9'),
+        (f"joints: [elbow_joint]\npoints:\n  - {POINT}\nspeed: 2\n", "CTRL020", "speed"),
+    ],
+)
+def test_bad_trajectories_are_located_input_errors(tmp_path: Path, body: str, code: str, needle: str | int) -> None:
+    text = "controller: arm_controller\n" + body
+    path = tmp_path / "t.yaml"
+    path.write_text(text)
+    rc, err = control(tmp_path, path, bounded=True)
+    line = needle if isinstance(needle, int) else line_of(text, needle)
+    assert rc == 2, err
+    first = err.splitlines()[0]
+    assert first.startswith(f"{path}:{line}:") and f"error[{code}]" in first, err
+    assert not (tmp_path / "ev").exists()
+
+
+def test_joint_the_controller_does_not_command_is_refused(tmp_path: Path) -> None:
+    path = tmp_path / "t.yaml"
+    path.write_text(f"controller: arm_controller\njoints: [left_wheel_joint]\npoints:\n  - {POINT}\n")
+    rc, err = control(tmp_path, path)  # was "ok": the arm controller ignored the goal
+    assert rc == 2 and f"{path}:1:1: error[CTRL033]" in err and "left_wheel_joint" in err, err
+
+
+@pytest.mark.parametrize(
+    ("fault", "needle"),
+    [
+        ("elbow_joint", "is not JOINT:=KIND"),  # was a ValueError traceback
+        ("elbow_joint:=wobble", "unknown fault kind 'wobble'"),  # was silently accepted
+        ("elbow_jiont:=stuck", "'elbow_jiont' is not a joint under ros2_control"),  # was silently accepted
+        (":=stuck", "is not JOINT:=KIND"),
+    ],
+)
+def test_plant_fault_is_checked(tmp_path: Path, fault: str, needle: str) -> None:
+    rc, err = control(tmp_path, READY, "--plant", "sim", "--plant-fault", fault)
+    assert rc == 2 and "error[CTRL032]: --plant-fault" in err and needle in err, err
+
+
+def test_plant_fault_on_the_mock_would_not_show(tmp_path: Path) -> None:
+    rc, err = control(tmp_path, READY, "--plant-fault", "elbow_joint:=stuck")
+    assert rc == 2 and "error[CTRL032]" in err and "--plant sim" in err, err
+
+
+def _last_time(folder: Path) -> float:
+    with (folder / "desired_vs_measured.csv").open() as f:
+        return max(float(row["time_s"]) for row in csv.DictReader(f))
+
+
+@pytest.mark.parametrize("duration", ["1.5s", "1.5", "1500 ms"])
+def test_control_duration_with_or_without_unit(tmp_path: Path, duration: str) -> None:
+    rc, err = control(tmp_path, READY, "--duration", duration)
+    assert rc == 0, err
+    assert _last_time(tmp_path / "ev") == 1.5  # the run ends at the 1.5 s asked for (was a ValueError for "3s")
+
+
+@pytest.mark.parametrize(
+    ("duration", "code"),
+    [("abc", "UNIT002"), ("nan", "UNIT002"), ("1e9", "UNIT021"), ("0", "UNIT021"), ("9**9**9 s", "UNIT020")],
+)
+def test_control_duration_is_checked(tmp_path: Path, duration: str, code: str) -> None:
+    rc, err = control(tmp_path, READY, "--duration", duration, bounded=True)
+    assert rc == 2 and f"<command line>: error[{code}]: --duration:" in err, err
+    assert not (tmp_path / "ev").exists()
+
+
+def test_control_out_under_a_file(tmp_path: Path) -> None:
+    (tmp_path / "afile").write_text("x")
+    rc, _out, err = cli(
+        "control",
+        SPEC,
+        "--trajectory",
+        str(READY),
+        "--duration",
+        "0.5 s",
+        "--out",
+        str(tmp_path / "afile" / "ev"),
+    )
+    assert rc == 2 and "error[CTRL034]" in err and "afile" in err, err
+
+
+# --------------------------------------------------------------------------- end to end
+
+
+def test_hostile_options_end_to_end(tmp_path: Path) -> None:
+    r = run_cli("tf-scenario", SPEC, "--out", str(tmp_path / "rec"), "--duration", "9**9**9")
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "error[UNIT020]: --duration" in r.stderr
+    assert not (tmp_path / "rec").exists()
