@@ -281,3 +281,19 @@ def test_audit_refuses_with_exit_2_and_trust_xacro_opts_in(tmp_path: Path, capsy
     assert f"{path}:{line_of(path, 'f.format')}:" in err and "error[READ030]" in err
     assert main(["audit", str(path), "--trust-xacro"]) in (0, 1)
     assert "module 'os'" in capsys.readouterr().err  # trusted: xacro's evaluator leaks, as documented
+
+
+@pytest.mark.parametrize("command", ["faults", "frames"])
+def test_every_command_that_reads_a_xacro_uses_the_sandbox(
+    tmp_path: Path, command: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    secret = tmp_path / "secret.yaml"
+    secret.write_text("token: hunter2\n")
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "package.xml").write_text("<package><name>pkg</name></package>")
+    path = write(pkg, f"  <link name=\"x${{xacro.load_yaml('{secret}').token}}\"/>")
+    assert main([command, str(path)]) == 2
+    captured = capsys.readouterr()
+    assert "error[READ031]" in captured.err
+    assert "hunter2" not in captured.out + captured.err
