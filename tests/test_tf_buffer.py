@@ -58,8 +58,17 @@ def random_script(seed: int) -> dict[str, object]:
                 continue
             taken.add(s)
             stamps.append(s)
-            ops.append({"op": "set", "parent": parent, "child": frames[i], "stamp": s,
-                        "t": [rng.uniform(-2, 2) for _ in range(3)], "q": random_quat(rng), "static": static})
+            ops.append(
+                {
+                    "op": "set",
+                    "parent": parent,
+                    "child": frames[i],
+                    "stamp": s,
+                    "t": [rng.uniform(-2, 2) for _ in range(3)],
+                    "q": random_quat(rng),
+                    "static": static,
+                }
+            )
     rng.shuffle(ops)
     lookups = []
     for _ in range(25):
@@ -91,8 +100,9 @@ def ours(script: dict[str, object]) -> list[dict[str, object]]:
 
 
 def theirs(scripts: list[dict[str, object]]) -> list[list[dict[str, object]]]:
-    r = subprocess.run([SYSTEM_PYTHON, str(ORACLE)], input=json.dumps(scripts), capture_output=True, text=True,
-                       timeout=300)
+    r = subprocess.run(
+        [SYSTEM_PYTHON, str(ORACLE)], input=json.dumps(scripts), capture_output=True, text=True, timeout=300
+    )
     assert r.returncode == 0, r.stderr
     results: list[list[dict[str, object]]] = json.loads(r.stdout)
     return results
@@ -133,6 +143,32 @@ def test_interpolation_by_hand() -> None:
     r = buf.lookup("a", "b", 2_000_000_000)
     assert r.translation == pytest.approx((1.0, 0.0, 0.0))
     np.testing.assert_allclose(quat_matrix(r.rotation)[:2, 0], (math.cos(math.pi / 4), math.sin(math.pi / 4)))
+
+
+def test_interpolation_at_a_quarter_by_hand() -> None:
+    """At a ratio of 0.25 a swapped (1 - t), a lerp instead of a slerp, or an interpolation
+    from the wrong end all give other values (at 0.5 several of them agree)."""
+    buf = BufferCore()
+    turn = math.radians(120)
+    buf.set_transform("a", "b", 1_000_000_000, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    buf.set_transform("a", "b", 5_000_000_000, (4.0, -8.0, 2.0), (0.0, 0.0, math.sin(turn / 2), math.cos(turn / 2)))
+    r = buf.lookup("a", "b", 2_000_000_000)
+    assert r.translation == pytest.approx((1.0, -2.0, 0.5), abs=1e-12)
+    # slerp: a quarter of 120 deg is 30 deg about z (a normalised lerp would give 25.3 deg)
+    np.testing.assert_allclose(
+        r.rotation, (0.0, 0.0, math.sin(math.radians(15)), math.cos(math.radians(15))), atol=1e-12
+    )
+
+
+def test_slerp_about_a_skew_axis_at_0_3_by_hand() -> None:
+    axis = np.array([1.0, 1.0, 1.0]) / math.sqrt(3)
+    half = math.radians(90) / 2
+    buf = BufferCore()
+    buf.set_transform("a", "b", 0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    buf.set_transform("a", "b", 10_000_000_000, (0.0, 0.0, 0.0), (*(axis * math.sin(half)), math.cos(half)))
+    r = buf.lookup("a", "b", 3_000_000_000)
+    want = (*(axis * math.sin(0.3 * half)), math.cos(0.3 * half))  # 27 deg about the same axis
+    np.testing.assert_allclose(r.rotation, want, atol=1e-12)
 
 
 def test_static_is_valid_at_all_times_and_dynamic_never_extrapolates() -> None:
