@@ -363,28 +363,13 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
 
 
 def _cmd_control(args: argparse.Namespace) -> int:
-    from .control.run import MAX_DURATION_S, MIN_DURATION_S, read_trajectory, run, write_evidence
+    from .control.run import MAX_DURATION_S, MIN_DURATION_S, find_package, read_trajectory, run, write_evidence
     from .control.system import Plant, plant_faults
-    from .generate import default_out
-    from .render.context import package_name
     from .spec import load_spec
 
     spec = Path(args.spec)
     robot = load_spec(spec).robot
-    package = default_out(spec) / package_name(robot)
-    if not (package / "config" / "ros2_controllers.yaml").is_file():
-        raise InputError(
-            [
-                Finding(
-                    "CTRL021",
-                    "error",
-                    f"{package} has no generated controllers file",
-                    "run descgen generate first",
-                    "file",
-                    Where(str(package)),
-                )
-            ]
-        )
+    package = find_package(spec, robot, Path(args.package) if args.package else None)
     duration = (
         _seconds(args.duration, "--duration", MIN_DURATION_S, MAX_DURATION_S) if args.duration is not None else None
     )
@@ -417,29 +402,30 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 def _cmd_rules(args: argparse.Namespace) -> int:
-    from .audit import RULES, iter_rules
+    """Every code any command prints (audit rules and the rest), or one code's explanation."""
+    from .codes import GROUPS, entries, explain
 
-    known = list(iter_rules())
-    if args.code and args.code not in RULES:
-        raise InputError(
-            [
-                Finding(
-                    "RULE001",
-                    "error",
-                    f"no rule {args.code}",
-                    "run descgen rules for the list",
-                    "option",
-                    Where("<command line>"),
-                )
-            ]
-        )
-    for info in known:
-        if args.code and info.code != args.code:
+    if args.code:
+        entry = explain(args.code.strip().upper())
+        if entry is None:
+            raise InputError(
+                [
+                    Finding(
+                        "RULE001",
+                        "error",
+                        f"no code {report.printable(args.code, 80)} in the catalogue",
+                        "run descgen rules for the list",
+                        "option",
+                        Where("<command line>"),
+                    )
+                ]
+            )
+        print(f"{entry.code} {entry.name} ({entry.severity}; {GROUPS[entry.group]})\n{entry.doc}", end="")
+        return EXIT_OK
+    for e in entries():
+        if args.group and e.group != args.group:
             continue
-        if args.code:
-            print(f"{info.code} {info.name} ({info.severity})\n{info.doc}")
-        else:
-            print(f"{info.code}  {info.severity:<7}  {info.name}: {info.summary}")
+        print(f"{e.code}  {e.severity:<7}  {e.group:<9}  {e.name}: {e.summary}")
     return EXIT_OK
 
 
@@ -460,6 +446,12 @@ def description_options(p: argparse.ArgumentParser) -> None:
         help="expand Xacro with xacro's own evaluator, which runs the file's Python and reads any file and "
         "environment variable; only for files you trust (default: a restricted evaluator, see docs/security.md)",
     )
+
+
+def _code_groups() -> list[str]:
+    from .codes import GROUPS
+
+    return list(GROUPS)
 
 
 def parser() -> argparse.ArgumentParser:
@@ -543,6 +535,11 @@ def parser() -> argparse.ArgumentParser:
         metavar="JOINT:=stuck|offset|reversed",
         help="plant a fault in a joint of the simulated plant (repeatable; needs --plant sim)",
     )
+    co.add_argument(
+        "--package",
+        help="the generated package, or the output root that `generate --out` wrote it under "
+        "(default: generated/ beside specs/)",
+    )
     co.add_argument("--out", help="folder for the evidence (default: the package's evidence/)")
     co.set_defaults(fn=_cmd_control)
 
@@ -554,8 +551,9 @@ def parser() -> argparse.ArgumentParser:
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")
     s.set_defaults(fn=_cmd_schema)
 
-    r = sub.add_parser("rules", help="list the rules, or show one")
-    r.add_argument("code", nargs="?")
+    r = sub.add_parser("rules", help="list every finding code (audit rules and the rest), or explain one")
+    r.add_argument("code", nargs="?", help="a code to explain, e.g. UNIT004")
+    r.add_argument("--group", choices=_code_groups(), help="list only the codes of one group")
     r.set_defaults(fn=_cmd_rules)
     return p
 

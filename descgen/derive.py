@@ -72,6 +72,16 @@ def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
     return DiffDriveGeometry(separation, radius, tuple(problems))
 
 
+def wheel_params(robot: Robot, c: Controller) -> dict[str, float]:
+    """``wheel_separation``/``wheel_radius`` for the controllers file: the spec's calibrated
+    value where it states one (measured on the robot), else the URDF-derived one."""
+    geo = diff_drive_geometry(robot, c)
+    derived = (("wheel_separation", geo.wheel_separation), ("wheel_radius", geo.wheel_radius))
+    out = {k: v for k, v in derived if v is not None}
+    out.update({cal.param: cal.value for cal in c.calibrated})
+    return out
+
+
 def wheel_radius(robot: Robot, j: Joint) -> float | None:
     link = robot.link(j.child) if j.child else None
     if link is None:

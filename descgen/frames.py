@@ -9,6 +9,8 @@ Facts encoded (reference/robot_state_publisher.md, ros2_control.md, conventions.
   hardware's *state* interfaces (position for the transform).
 - diff_drive_controller publishes ``odom_frame_id -> base_frame_id`` on /tf when
   ``enable_odom_tf`` is true (its default), from the wheels' state interfaces.
+- A mimic joint's transform follows its leader's /joint_states value
+  (``q = multiplier * q_leader + offset``; robot_state_publisher, GenericSystem).
 - Anything else (localisation's map -> odom, a calibrated sensor mount, a driver's own
   frames) is declared in the spec under ``frames.external``.
 """
@@ -17,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from . import mimic
 from .findings import Where
 from .model import NOWHERE, Robot
 
@@ -46,12 +49,23 @@ def _jsb(robot: Robot) -> str | None:
     return next((c.name for c in rc.controllers if c.type.startswith("joint_state_broadcaster/")), None)
 
 
-def joint_state_feed(robot: Robot, joint: str, _seen: frozenset[str] = frozenset()) -> str | None:
-    """What puts ``joint`` on /joint_states, or None when nothing does."""
-    source = robot.joint(joint)  # an index: a scan per joint would be quadratic on long chains
-    if source is not None and source.mimic is not None and source.mimic.joint not in _seen | {joint}:
-        feed = joint_state_feed(robot, source.mimic.joint, _seen | {joint})
-        return None if feed is None else f"mimics {source.mimic.joint} ({feed})"
+def joint_state_feed(robot: Robot, joint: str) -> str | None:
+    """What puts ``joint`` on /joint_states (or drives it), or None when nothing does.
+
+    A mimic joint is driven by its leader: robot_state_publisher adds
+    ``multiplier * leader + offset`` for it whenever the leader is on /joint_states
+    (GenericSystem and joint_state_publisher publish the same value), so its transform
+    follows the leader's feed. A follower with no driving joint (JOINT007) falls back to
+    its own feed."""
+    rel = mimic.relation(robot, joint)
+    if rel is not None:
+        feed = _own_feed(robot, rel.leader)
+        if feed is not None:
+            return f"mimics {rel.leader} (q = {mimic.formula(robot, rel)}); {feed}"
+    return _own_feed(robot, joint)
+
+
+def _own_feed(robot: Robot, joint: str) -> str | None:
     declared = [s for s in robot.joint_state_sources if not s.joints or joint in s.joints]
     rc = robot.ros2_control
     feeds = [f"/joint_states from {s.node} ({s.kind})" for s in declared]

@@ -3,7 +3,8 @@
 A joint's transform is ``origin * motion(q)``: rotation by q about the joint axis (in the
 joint frame) for revolute and continuous joints, translation by q along it for prismatic
 joints; fixed, floating and planar joints sit at their origin (known poses set only
-one-degree-of-freedom joints). The axis is normalised (urdfdom does not; JOINT002 flags
+one-degree-of-freedom joints). Mimic joints follow their leaders (``descgen.mimic``), as
+in robot_state_publisher, MoveIt, yourdfpy and pinocchio. The axis is normalised (urdfdom does not; JOINT002 flags
 an axis that is not unit length). Origins use URDF's fixed-axis roll-pitch-yaw.
 """
 
@@ -13,6 +14,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from . import mimic
 from .model import Joint, Robot
 from .transforms import Mat, axis_angle_matrix, pose_matrix
 
@@ -38,8 +40,11 @@ def joint_transform(j: Joint, q: float = 0.0) -> Mat:
 
 
 def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat]:
-    """Pose of every link reachable from the root, in the root frame."""
-    values = q or {}
+    """Pose of every link reachable from the root, in the root frame.
+
+    Joints not in ``q`` are at zero; a mimic joint is always set from its leader (a value
+    given for it is replaced: it is not a free variable)."""
+    values = mimic.resolve(robot, q or {})
     root = robot.root()
     if root is None:
         return {}

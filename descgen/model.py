@@ -227,6 +227,40 @@ class ControlJoint:
     state: tuple[Interface, ...] = ()
     on_limit: str = "reject"  # reject | clip: what the command/state boundary does beyond limits
     where: Where = NOWHERE
+    mimic: str | None = None  # the ros2_control ``mimic`` attribute as written; None: not set
+    params: tuple[tuple[str, str], ...] = ()  # joint-level <param>s (pre-Jazzy mimic lived here)
+    block: str = ""  # name of the <ros2_control> block holding the joint
+
+
+@dataclass(frozen=True)
+class ControlSensor:
+    """A ros2_control ``<sensor>``: state interfaces only, not checked against the URDF."""
+
+    name: str
+    state: tuple[Interface, ...] = ()
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class HardwareBlock:
+    """One ``<ros2_control>`` block's hardware (a robot may have several, one per bus)."""
+
+    name: str
+    plugin: str
+    params: tuple[tuple[str, str], ...] = ()
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class Calibrated:
+    """A controller parameter measured on the robot (e.g. diff drive wheel_separation),
+    checked against the value the URDF gives within ``tolerance`` (SI)."""
+
+    param: str
+    value: float
+    tolerance: float | None = None
+    source: str | None = None
+    where: Where = NOWHERE
 
 
 @dataclass(frozen=True)
@@ -235,6 +269,7 @@ class Controller:
     type: str
     params: tuple[tuple[str, object], ...] = ()
     where: Where = NOWHERE
+    calibrated: tuple[Calibrated, ...] = ()
 
     def param(self, key: str, default: object = None) -> object:
         return dict(self.params).get(key, default)
@@ -250,6 +285,9 @@ class Ros2Control:
     update_rate: float | None = None  # Hz
     controllers: tuple[Controller, ...] = ()
     where: Where = NOWHERE
+    sensors: tuple[ControlSensor, ...] = ()
+    blocks: tuple[HardwareBlock, ...] = ()  # every block read from a URDF; empty for a spec (one block)
+    sim_plugins: tuple[tuple[str, Where], ...] = ()  # <gazebo><plugin filename> entries of the description
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,7 @@
-"""Known poses: measured frame positions against forward kinematics of the model."""
+"""Known poses: measured frame positions against forward kinematics of the model.
+
+Joints a pose does not list are at zero, and mimic joints follow their leaders
+(``descgen.mimic``), as they do on the robot."""
 
 from __future__ import annotations
 
@@ -6,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import kinematics
+from . import kinematics, mimic
 from .findings import Finding
 from .model import FrameMeasurement, KnownPose, Robot, Vec3
 
@@ -67,6 +70,9 @@ def path_joints(robot: Robot, frame: str, base: str | None) -> list[str]:
             part += f" rpy {tuple(round(float(np.degrees(a)), 3) for a in j.origin.rpy)} deg"
         if j.type in ("revolute", "continuous", "prismatic") and j.axis is not None:
             part += f", axis {tuple(j.axis)}"
+        rel = mimic.relation(robot, j.name)
+        if rel is not None:  # a measured mimic finger that is off may be a wrong multiplier or offset
+            part += f", mimic: q = {mimic.formula(robot, rel)}"
         out.append(part + ")")
     return out
 

@@ -56,18 +56,18 @@ _LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
 def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
     """SARIF 2.1.0 (what GitHub code scanning reads): one run, the rules that fired (their
-    docs as help), one result per finding."""
+    catalogue entry, descgen/codes.py, as help), one result per finding."""
     from pathlib import Path
 
     from . import __version__
-    from .audit import RULES, iter_rules
+    from .codes import entries
 
     fs = list(findings)
-    list(iter_rules())  # registers every rule
+    known = {e.code: e for e in entries()}  # every code any command prints, rules or not
     codes = sorted({f.code for f in fs})
     rules = []
     for code in codes:
-        info = RULES.get(code)
+        info = known.get(code)
         entry: dict[str, object] = {"id": code}
         if info is not None:
             entry.update(
@@ -76,9 +76,10 @@ def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
                     "shortDescription": {"text": info.summary or info.name},
                     "fullDescription": {"text": " ".join(info.doc.split())},
                     "help": {"text": info.doc.strip(), "markdown": info.doc.strip()},
-                    "defaultConfiguration": {"level": _LEVEL[info.severity]},
                 }
             )
+            if info.severity != "varies":
+                entry["defaultConfiguration"] = {"level": _LEVEL[info.severity]}
         else:
             entry["shortDescription"] = {"text": f"descgen {code}"}
         rules.append(entry)

@@ -77,6 +77,28 @@ class QuantityError(ValueError):
         self.hint = hint
 
 
+# A bare number's likely unit, for the hint only (the value is still refused): the unit in
+# which that number is a plausible size for a robot. Millimetres and grams are how parts are
+# measured, so numbers from 10 mm and 100 g up read as those; an angle beyond one turn in
+# radians is surely in degrees. (unit below, unit from this magnitude up)
+_LIKELY_UNIT: dict[str, tuple[str, float, str]] = {
+    "length": ("m", 10.0, "mm"),
+    "mass": ("kg", 100.0, "g"),
+    "angle": ("rad", 2 * math.pi + 1e-9, "deg"),
+    "angular_velocity": ("rad/s", 2 * math.pi + 1e-9, "deg/s"),
+}
+
+
+def likely_unit(kind_name: str, magnitude: float) -> str:
+    """The unit a bare ``magnitude`` of this kind was most likely measured in: 300 → mm and
+    0.3 → m for a length, 1200 → g and 2.5 → kg for a mass, 90 → deg and 1.57 → rad for
+    an angle; other kinds get their usual unit."""
+    small, threshold, large = _LIKELY_UNIT.get(kind_name, ("", 0.0, ""))
+    if not small:
+        return KINDS[kind_name].example.split(" ", 1)[1]
+    return large if abs(magnitude) >= threshold else small
+
+
 def _a(kind_name: str) -> str:
     words = kind_name.replace("_", " ")
     return ("an " if words[0] in "aeiou" else "a ") + words
@@ -204,7 +226,7 @@ def _to_si(value: object, kind_name: str) -> float:
         raise QuantityError(
             "UNIT001",
             f"bare number {value!r} where {_a(kind.name)} is expected",
-            f'write the unit it was measured in, e.g. "{value} {kind.example.split(" ", 1)[1]}"',
+            f'write the unit it was measured in, e.g. "{value} {likely_unit(kind.name, value)}"',
         )
     if not isinstance(value, str):
         raise QuantityError(
@@ -219,7 +241,7 @@ def _to_si(value: object, kind_name: str) -> float:
         raise QuantityError(
             "UNIT001",
             f'"{value}" has no unit where {_a(kind.name)} is expected',
-            f'write the unit it was measured in, e.g. "{q.magnitude} {kind.example.split(" ", 1)[1]}"',
+            f'write the unit it was measured in, e.g. "{q.magnitude} {likely_unit(kind.name, q.magnitude)}"',
         )
     wrong = QuantityError(
         "UNIT003",

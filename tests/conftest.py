@@ -2,6 +2,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import sys
 from pathlib import Path
 
 import pytest
@@ -23,3 +24,37 @@ def require_tool(name: str) -> str:
 @pytest.fixture
 def example_text() -> str:
     return EXAMPLE.read_text()
+
+
+# --- every finding code seen in the session is in the catalogue (tests/codes_seen.py) ---------
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    from . import codes_seen
+
+    codes_seen.shared_dir()  # the controller makes it before xdist starts workers (they inherit it)
+    codes_seen.install()
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    from . import codes_seen
+
+    codes_seen.uninstall()
+    codes_seen.dump()
+    if hasattr(session.config, "workerinput"):
+        return  # an xdist worker: the controller checks the union
+    missing = codes_seen.unregistered(codes_seen.collect())
+    shutil.rmtree(codes_seen.shared_dir(), ignore_errors=True)
+    if missing:
+        lines = "\n".join(f"  {code} (made in {where})" for code, where in missing.items())
+        reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+        text = (
+            "descgen printed finding codes that are not in the catalogue (descgen/codes.py or an "
+            f"audit @rule), so `descgen rules CODE` cannot explain them:\n{lines}"
+        )
+        if reporter is not None:
+            reporter.write_sep("=", "UNREGISTERED FINDING CODES", red=True, bold=True)
+            reporter.write_line(text)
+        else:
+            sys.stderr.write(text + "\n")
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED

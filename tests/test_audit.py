@@ -15,6 +15,7 @@ from descgen.audit.inputs import audit
 from descgen.faults import plant_all
 from descgen.model import (
     Box,
+    Calibrated,
     Collision,
     ControlJoint,
     Controller,
@@ -245,6 +246,20 @@ def _controllers() -> tuple[Controller, ...]:
     return ROBOT.ros2_control.controllers
 
 
+def _control_joint(name: str, **changes: object) -> Robot:
+    assert ROBOT.ros2_control is not None
+    return _control(
+        joints=tuple(dataclasses.replace(cj, **changes) if cj.name == name else cj for cj in ROBOT.ros2_control.joints)
+    )
+
+
+def _separation() -> float:
+    from descgen.derive import diff_drive_geometry
+
+    c = next(c for c in _controllers() if c.name == "diff_drive_controller")
+    return diff_drive_geometry(ROBOT, c).wheel_separation or 0.0
+
+
 def _with_controller_param(name: str, key: str, value: object) -> Robot:
     cs = tuple(
         dataclasses.replace(c, params=(*c.params, (key, value))) if c.name == name else c for c in _controllers()
@@ -296,6 +311,11 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "JOINT002": lambda: _edit_joint("lift_joint", axis=(0.0, 0.0, 2.0)),
     "JOINT006": lambda: _edit_joint("left_wheel_joint", limit=Limit(-1.0, 1.0, 12.0, 11.0)),
     "JOINT007": lambda: _edit_joint("elbow_joint", mimic=Mimic("elbow_joint")),
+    # the elbow made a mimic of the shoulder lift; pose 'ready' sets it to -90 deg (leader at 0: implies 0)
+    "POSE020": lambda: _edit_joint("elbow_joint", mimic=Mimic("shoulder_lift_joint")),
+    "POSE021": lambda: _edit_joint("lift_joint", mimic=Mimic("shoulder_pan_joint", 1.0, 0.15)),  # 'ready': 150 mm
+    # pose 'shoulder_up_30' (-30 deg) times 10 puts the elbow at -300 deg, beyond -150 deg
+    "POSE022": lambda: _edit_joint("elbow_joint", mimic=Mimic("shoulder_lift_joint", 10.0)),
     "JOINT008": lambda: _edit_joint("shoulder_lift_joint", limit=Limit(-1.7, 1.7, 0.5, 1.5)),
     "JOINT009": lambda: _edit_joint("left_wheel_joint", origin=Pose((0.0, 0.24257, 0.0), (0.3, 0.0, 0.0))),
     "UNIT011": lambda: _edit_joint("tool_joint", origin=Pose((250.0, 0.0, 0.0))),
@@ -353,6 +373,27 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "CTRL006": lambda: _with_controller_param("diff_drive_controller", "wheel_radius", 0.09),
     "CTRL007": lambda: _control(update_rate=99.5),
     "CTRL009": lambda: _with_controller_param("arm_controller", "joints", ("lift_joint", "wrist_joint")),
+    # Jazzy's ros2_control rules (more cases with their sources in test_ros2_control_jazzy.py)
+    "CTRL040": lambda: _edit_joint("elbow_joint", mimic=Mimic("shoulder_lift_joint")),
+    "CTRL041": lambda: _control_joint("elbow_joint", mimic="true"),
+    "CTRL042": lambda: _edit_joint("elbow_joint", mimic=Mimic("tool_joint")),  # tool_joint: not under ros2_control
+    "CTRL043": lambda: _control_joint("elbow_joint", mimic="yes"),
+    "CTRL044": lambda: _control_joint("elbow_joint", params=(("mimic", "shoulder_lift_joint"),)),
+    "CTRL045": lambda: _control(plugin="fake_components/GenericSystem"),
+    "CTRL046": lambda: _control(params=(("fake_sensor_commands", "true"),)),
+    "CTRL047": lambda: _control(sim_plugins=(("libgazebo_ros2_control.so", ROBOT.where),)),
+    "CTRL049": lambda: _control(controllers=(*_controllers(), Controller("wrist", "my_controllers/Wrist"))),
+    "CTRL050": lambda: _control(
+        controllers=(*_controllers(), Controller("gripper", "position_controllers/GripperActionController"))
+    ),
+    "CTRL051": lambda: _control(
+        controllers=tuple(
+            dataclasses.replace(c, calibrated=(Calibrated("wheel_separation", _separation() + 0.03),))
+            if c.name == "diff_drive_controller"
+            else c
+            for c in _controllers()
+        )
+    ),
     "SRDF001": lambda: dataclasses.replace(
         ROBOT, semantic=dataclasses.replace(ROBOT.semantic, groups=(Group("g", links=("nowhere_link",)),))
     ),  # type: ignore[arg-type]
@@ -368,6 +409,9 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "SRDF005": lambda: dataclasses.replace(ROBOT, extras={**ROBOT.extras, "srdf_robot_name": "other"}),
     "SRDF006": lambda: dataclasses.replace(
         ROBOT, semantic=dataclasses.replace(ROBOT.semantic, states=(GroupState("s", "arm", (("lift_joint", 0.1),)),))
+    ),  # type: ignore[arg-type]
+    "SRDF020": lambda: dataclasses.replace(  # elbow_joint is on the arm group's chain
+        ROBOT, semantic=dataclasses.replace(ROBOT.semantic, passive_joints=("elbow_joint",))
     ),  # type: ignore[arg-type]
     "GEOM003": lambda: dataclasses.replace(
         _edit_lift_mesh(), extras={**ROBOT.extras, "mesh_status": {"meshes/b.stl": "missing"}}

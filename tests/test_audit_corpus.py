@@ -78,10 +78,13 @@ def test_every_planted_fault_is_caught_on_corpus_robots(ident: str) -> None:
     _, urdf, srdf = next(c for c in CORPUS if c[0] == ident)
     robot, _ = load_description(urdf, Options(srdf=srdf, package_paths=(share(),)))  # type: ignore[arg-type]
     results = plant_all(robot)
-    missed = [(r.fault.name, r.planted) for r in results if not r.caught]
+    missed = [(r.fault.name, r.planted) for r in results if r.applicable and not r.caught]
     assert missed == []
+    # only the prismatic fault may lack a place: pr2 and tiago have a torso lift, the others none
+    has_prismatic = any(j.type == "prismatic" for j in robot.joints)
+    assert [r.fault.name for r in results if not r.applicable] == ([] if has_prismatic else ["prismatic-travel-mm"])
     for r in results:
-        assert r.by is not None and r.by.code in r.fault.expects, (r.fault.name, r.by)
+        assert not r.applicable or (r.by is not None and r.by.code in r.fault.expects), (r.fault.name, r.by)
 
 
 def test_faults_cli_on_the_example() -> None:
@@ -90,7 +93,7 @@ def test_faults_cli_on_the_example() -> None:
     import json
 
     doc = json.loads(r.stdout)
-    assert doc["missed"] == 0 and doc["caught"] == len(doc["faults"]) == 22
+    assert doc["missed"] == 0 and doc["caught"] == len(doc["faults"]) == 24
 
 
 def test_a_fault_the_catalogue_cannot_see_is_reported_missed(tmp_path: Path) -> None:

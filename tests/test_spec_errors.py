@@ -76,7 +76,7 @@ CASES = [
         "CTRL001",
         "elbo_joint",
     ),
-    ("bad-name", "  - name: tool_link\n", "  - name: tool-link\n", "NAME001", "tool-link"),
+    ("bad-name", "  - name: tool_link\n", "  - name: tool-link\n", "SPEC050", "tool-link"),
     ("wrong-joint-type", "    type: prismatic\n", "    type: slider\n", "SPEC003", "type: slider"),
     ("missing-key", "    parent: upper_link\n", "", "SPEC002", "- name: elbow_joint"),
     (

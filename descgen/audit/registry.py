@@ -12,6 +12,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import Literal
 
+from ..codes import CODES
 from ..findings import Finding, Severity, Where
 from ..model import Robot
 
@@ -49,6 +50,9 @@ def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Ca
             raise ValueError(f"rule code {code!r} is not a category prefix plus 3 digits")
         if code in RULES or any(r.name == name for r in RULES.values()):
             raise ValueError(f"duplicate rule {code} {name}")
+        if code in CODES or any(c.name == name for c in CODES.values()):
+            # one catalogue (descgen/codes.py): a rule may not reuse a loader/reader code
+            raise ValueError(f"rule {code} {name} duplicates a catalogue code")
         doc = inspect.cleandoc(fn.__doc__ or "")
         missing = [h for h in _HEADINGS if h not in doc]
         if missing:

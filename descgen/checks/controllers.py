@@ -16,12 +16,12 @@ _JOINT_LISTS = ("joints", "left_wheel_names", "right_wheel_names")
 
 
 def exported_interfaces(urdf_text: str) -> tuple[set[tuple[str, str]], set[tuple[str, str]], set[str]]:
-    """(command, state) interfaces per joint in the ``<ros2_control>`` blocks, and URDF joints."""
+    """(command, state) interfaces per joint or sensor in the ``<ros2_control>`` blocks, and URDF joints."""
     root = parse(urdf_text)
     command: set[tuple[str, str]] = set()
     state: set[tuple[str, str]] = set()
     for block in root.iter("ros2_control"):
-        for j in block.iter("joint"):
+        for j in (*block.iter("joint"), *block.iter("sensor")):
             command |= {(j.get("name", ""), c.get("name", "")) for c in j.iter("command_interface")}
             state |= {(j.get("name", ""), c.get("name", "")) for c in j.iter("state_interface")}
     urdf_joints = {j.get("name", "") for j in root if j.tag == "joint"}
@@ -29,7 +29,7 @@ def exported_interfaces(urdf_text: str) -> tuple[set[tuple[str, str]], set[tuple
 
 
 def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
-    from ..audit.rules.control import claims, state_reads
+    from ..control.claims import JOINT_PARAMS, claims_of, split
 
     path = "config/ros2_controllers.yaml"
     if path not in files:
@@ -62,8 +62,10 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
             continue
         params = (doc.get(name) or {}).get("ros__parameters", {})
         c = Controller(name, str(entry["type"]), tuple((k, _tuple(v)) for k, v in params.items()))
-        for key in _JOINT_LISTS:
-            for joint in params.get(key, []) or []:
+        known = claims_of(c)
+        for key in JOINT_PARAMS if known.known else _JOINT_LISTS:
+            value = params.get(key)
+            for joint in [value] if isinstance(value, str) else value or []:
                 if joint not in urdf_joints:
                     out.append(
                         Finding(
@@ -76,11 +78,11 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
                         )
                     )
         for pairs, exported, verb, kind in (
-            (claims(c), command, "claims", "command"),
-            (state_reads(c), state, "reads", "state"),
+            ([split(k) for k in known.command], command, "claims", "command"),
+            ([split(k) for k in known.state], state, "reads", "state"),
         ):
             for joint, iface in pairs:
-                if joint in urdf_joints and (joint, iface) not in exported:
+                if (joint, iface) not in exported:
                     out.append(
                         Finding(
                             "GEN003",

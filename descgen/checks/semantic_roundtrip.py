@@ -196,6 +196,7 @@ def controllers_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> l
             geo = derive.diff_drive_geometry(robot, c)
             expected["wheel_separation"] = geo.wheel_separation
             expected["wheel_radius"] = geo.wheel_radius
+            expected.update(derive.wheel_params(robot, c))  # a calibrated value wins
         d.eq(f"controller:{c.name}/params", expected, written)
     d.eq("controllers", [c.name for c in rc.controllers], [k for k in cm if k != "update_rate"])
     return d.found

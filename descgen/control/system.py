@@ -17,7 +17,11 @@ Facts encoded (reference/ros2_control.md, with its sources):
 - mock_components/GenericSystem mirrors in read(): position command -> position state
   (+ position_state_following_offset), same-named states from same-named commands; a NaN
   command is ignored; an infinite one makes read() return ERROR; with calculate_dynamics a
-  velocity command integrates into position (hardware_interface/src/mock_components/generic_system.cpp).
+  velocity command integrates into position (hardware_interface/src/mock_components/generic_system.cpp);
+- at the end of every read(), GenericSystem sets each mimic joint's position state to
+  ``offset + multiplier * position(leader)`` and its velocity and acceleration states to
+  ``multiplier * leader's`` (its direct URDF ``<mimic>`` leader, in the order of the
+  block's joints: a chain is not resolved first) (generic_system.cpp, "Update mimic joints").
 """
 
 from __future__ import annotations
@@ -94,6 +98,16 @@ class JointHw:
     policy: str = "reject"  # reject | clip
 
 
+@dataclass(frozen=True)
+class MimicHw:
+    """HardwareInfo.mimic_joints: a joint whose states follow a leader in the same block."""
+
+    joint: str
+    leader: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
 @dataclass
 class Plant:
     """How a joint really moves. ``mock``: GenericSystem's echo. ``sim``: a first-order lag
@@ -163,6 +177,7 @@ class Hardware(Node):
         self.speed: dict[str, float] = {}
         self.rng = random.Random(plant.seed)
         self.vel_limit: dict[str, float] = {}
+        self.mimics: list[MimicHw] = []
 
     @property
     def echoes_commands(self) -> bool:
@@ -199,6 +214,18 @@ class Hardware(Node):
                 self._mirror(j, dt)
             else:
                 self._simulate(j, dt)
+        self._follow_mimics()
+
+    def _follow_mimics(self) -> None:
+        """GenericSystem's "Update mimic joints" step, after every other state is set."""
+        by_name = {j.name: j for j in self.joints}
+        for mj in self.mimics:
+            follower, leader = by_name[mj.joint], by_name[mj.leader]
+            for k in ("position", "velocity", "acceleration"):
+                if k in follower.states:
+                    # get_state of an interface the leader lacks would throw; a missing one reads as 0 here
+                    src = leader.states.get(k, 0.0)
+                    follower.states[k] = (mj.offset if k == "position" else 0.0) + mj.multiplier * src
 
     def _mirror(self, j: JointHw, dt: float) -> None:
         pos = j.commands.get("position")

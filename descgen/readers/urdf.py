@@ -288,53 +288,84 @@ class _Reader:
             self.where(e),
         )
 
-    def ros2_control(self, blocks: list[etree._Element]) -> m.Ros2Control | None:
+    def interfaces(self, owner: etree._Element, tag: str) -> tuple[m.Interface, ...]:
+        """The ``<command_interface>``/``<state_interface>`` children of a joint or sensor."""
+        out = []
+        subject = f"{owner.tag}:{owner.get('name', '')}"
+        for ie in owner.findall(tag):
+            params = {p.get("name"): p.text for p in ie.findall("param")}
+
+            def f(key: str, params: dict[str | None, str | None] = params, ie: etree._Element = ie) -> float | None:
+                try:
+                    text = params.get(key)
+                    value = None if text is None else float(text)
+                except ValueError:
+                    return None
+                if value is not None and not math.isfinite(value):
+                    self.not_finite(ie, f"{ie.get('name', '')} param {key}='{text}'", subject)
+                    return None
+                return value
+
+            out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value")))
+        return tuple(out)
+
+    def ros2_control(self, blocks: list[etree._Element], root: etree._Element) -> m.Ros2Control | None:
         if not blocks:
             return None
         # a robot may split its hardware over several <ros2_control> blocks (one per bus);
-        # the model keeps the first block's name and plugin and every block's joints
-        b = blocks[0]
+        # the model keeps the first block's name and plugin, every block's hardware in
+        # ``blocks``, and every block's joints and sensors (each joint knows its block:
+        # Jazzy looks for a mimic joint's leader in the same block only)
         joints = []
-        for je in (je for block in blocks for je in block.findall("joint")):
-
-            def interfaces(tag: str, je: etree._Element = je) -> tuple[m.Interface, ...]:
-                out = []
-                for ie in je.findall(tag):
-                    params = {p.get("name"): p.text for p in ie.findall("param")}
-
-                    def f(
-                        key: str, params: dict[str | None, str | None] = params, ie: etree._Element = ie
-                    ) -> float | None:
-                        try:
-                            text = params.get(key)
-                            value = None if text is None else float(text)
-                        except ValueError:
-                            return None
-                        if value is not None and not math.isfinite(value):
-                            self.not_finite(
-                                ie, f"{ie.get('name', '')} param {key}='{text}'", f"joint:{je.get('name', '')}"
-                            )
-                            return None
-                        return value
-
-                    out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value")))
-                return tuple(out)
-
-            joints.append(
-                m.ControlJoint(
-                    je.get("name", ""),
-                    interfaces("command_interface"),
-                    interfaces("state_interface"),
-                    where=self.where(je),
+        sensors = []
+        hardware = []
+        for block in blocks:
+            hw = block.find("hardware")
+            hardware.append(
+                m.HardwareBlock(
+                    block.get("name", ""),
+                    (hw.findtext("plugin") or "").strip() if hw is not None else "",
+                    tuple(
+                        (p.get("name", ""), (p.text or "").strip())
+                        for p in (hw.findall("param") if hw is not None else [])
+                    ),
+                    self.where(block),
                 )
             )
-        hw = b.find("hardware")
-        plugin = (hw.findtext("plugin") or "").strip() if hw is not None else ""
-        params = tuple(
-            (p.get("name", ""), (p.text or "").strip()) for p in (hw.findall("param") if hw is not None else [])
+            for je in block.findall("joint"):
+                joints.append(
+                    m.ControlJoint(
+                        je.get("name", ""),
+                        self.interfaces(je, "command_interface"),
+                        self.interfaces(je, "state_interface"),
+                        where=self.where(je),
+                        mimic=je.get("mimic"),
+                        params=tuple((p.get("name", ""), (p.text or "").strip()) for p in je.findall("param")),
+                        block=block.get("name", ""),
+                    )
+                )
+            for se in block.findall("sensor"):
+                sensors.append(
+                    m.ControlSensor(se.get("name", ""), self.interfaces(se, "state_interface"), self.where(se))
+                )
+        sim = tuple(
+            ((pe.get("filename") or "").strip(), self.where(pe))
+            for g in root.findall("gazebo")
+            for pe in g.findall("plugin")
         )
+        b = hardware[0]
         return m.Ros2Control(
-            b.get("name", ""), b.get("type", ""), plugin, params, tuple(joints), None, (), self.where(b)
+            blocks[0].get("name", ""),
+            blocks[0].get("type", ""),
+            b.plugin,
+            b.params,
+            tuple(joints),
+            None,
+            (),
+            b.where,
+            sensors=tuple(sensors),
+            blocks=tuple(hardware),
+            sim_plugins=sim,
         )
 
 
@@ -387,7 +418,7 @@ def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
         tuple(r.link(e) for e in root.findall("link")),
         tuple(r.joint(e) for e in root.findall("joint")),
         tuple(r.material(e) for e in root.findall("material")),
-        ros2_control=r.ros2_control(root.findall("ros2_control")),
+        ros2_control=r.ros2_control(root.findall("ros2_control"), root),
         where=r.where(root),
         source_file=file,
     )

@@ -59,11 +59,7 @@ def controllers_doc(robot: Robot) -> dict[str, Any]:
     for c in rc.controllers:
         params = {str(k): _plain(v) for k, v in c.params}
         if c.type.startswith("diff_drive_controller/"):
-            geo = derive.diff_drive_geometry(robot, c)
-            if geo.wheel_separation is not None:
-                params["wheel_separation"] = geo.wheel_separation
-            if geo.wheel_radius is not None:
-                params["wheel_radius"] = geo.wheel_radius
+            params.update(derive.wheel_params(robot, c))
         if params:
             doc[c.name] = {"ros__parameters": params}
     return doc
@@ -185,6 +181,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "ros2_control": rc,
         "hw_params": [(k, text(v)) for k, v in rc.params] if rc else [],
         "control_joints": derive.interfaces_with_limits(robot),
+        "control_mimic": {cj.name: cj.mimic for cj in rc.joints if cj.mimic is not None} if rc else {},
         "controllers": controllers,
         "plugin": rc.plugin if rc else "",
         "controllers_yaml": controllers_yaml(robot),

@@ -380,14 +380,27 @@ class Builder:
             if cj.initial_position is not None:
                 initial = self.joint_value(cj.name, cj.initial_position, (*p, "initial_position"))
             state = tuple(m.Interface(n, initial_value=initial if n == "position" else None) for n in cj.state)
+            mimic = None if cj.mimic is None else _param_text(cj.mimic)
             joints.append(
-                m.ControlJoint(cj.name, tuple(m.Interface(n) for n in cj.command), state, cj.on_limit, self.where(p))
+                m.ControlJoint(
+                    cj.name, tuple(m.Interface(n) for n in cj.command), state, cj.on_limit, self.where(p), mimic
+                )
             )
         controllers = []
         for i, c in enumerate(rc.controllers):
             p = (*base, "controllers", i)
             params = tuple((k, self.param(v, (*p, "params", k))) for k, v in c.params.items())
-            controllers.append(m.Controller(c.name, c.type, params, self.where(p)))
+            calibrated = tuple(
+                m.Calibrated(
+                    k,
+                    cal.value.si,
+                    None if cal.tolerance is None else cal.tolerance.si,
+                    cal.source,
+                    self.where((*p, "calibrated", k)),
+                )
+                for k, cal in c.calibrated.items()
+            )
+            controllers.append(m.Controller(c.name, c.type, params, self.where(p), calibrated))
         hw = tuple((k, _param_text(v)) for k, v in rc.hardware.params.items())
         return m.Ros2Control(
             rc.name,

@@ -65,7 +65,7 @@ def allowed_keys(root: type[BaseModel], path: Path_) -> list[str]:
     return [info.alias or name for name, info in model.model_fields.items()]
 
 
-def _data_path(data: Any, loc: tuple[Any, ...]) -> Path_:
+def data_path(data: Any, loc: tuple[Any, ...]) -> Path_:
     """pydantic's loc reduced to keys and indexes that exist in the YAML data."""
     out: list[str | int] = []
     cur = data
@@ -87,7 +87,7 @@ def _data_path(data: Any, loc: tuple[Any, ...]) -> Path_:
 _TYPE_CODES = {
     "missing": "SPEC002",
     "extra_forbidden": "SPEC001",
-    "string_pattern_mismatch": "NAME001",
+    "string_pattern_mismatch": "SPEC050",
     "literal_error": "SPEC003",
 }
 
@@ -97,7 +97,7 @@ def findings_from(exc: ValidationError, doc: Document, root: type[BaseModel], pr
     seen: set[tuple[str, Path_]] = set()
     for err in exc.errors(include_url=False):
         loc = tuple(err["loc"])
-        path = _data_path(doc.data, prefix + loc)
+        path = data_path(doc.data, prefix + loc)
         etype = err["type"]
         ctx = err.get("ctx") or {}
         code = etype if etype[:4].isupper() and etype[4:].isdigit() else _TYPE_CODES.get(etype, "SPEC003")

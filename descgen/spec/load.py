@@ -2,19 +2,24 @@
 
 from __future__ import annotations
 
+import copy
 import hashlib
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 from pydantic import ValidationError
 
 from ..audit import run as run_rules
 from ..findings import Finding, InputError, errors
 from ..model import Robot
-from ..yamlsource import Document, load, loads
+from ..units import Range
+from ..yamlsource import Document, Path_, load, loads
 from .build import Builder, missing_sources, ranges_from
-from .errors import findings_from
+from .errors import data_path, findings_from
 from .models import RobotSpec
+from .quantity import Measured
 
 
 @dataclass(frozen=True)
@@ -57,19 +62,134 @@ def from_document(doc: Document, rules: bool = True) -> Loaded:
     try:
         spec = RobotSpec.model_validate(doc.data, context={"ranges": ranges})
     except ValidationError as exc:
-        raise InputError([*problems, *findings_from(exc, doc, RobotSpec)]) from None
+        problems += findings_from(exc, doc, RobotSpec)
+        # report the rest of the spec too, in the same run, if the model can still be built
+        problems += _rules_despite(exc, doc, ranges) if rules else []
+        raise InputError(_ordered(_unique(problems))) from None
+    robot, built = _build(doc, spec, ranges)
+    problems += built
+    findings = run_rules(robot, stage="input") if rules else []
+    bad = _bad_paths(doc, built)
+    if bad:  # a value the builder could not convert: rules judged a stand-in there
+        findings = [f for f in findings if not _inside(f, doc, bad)]
+    problems += errors(findings)
+    if problems:
+        raise InputError(_ordered(_unique(problems)))
+    return Loaded(robot, spec, doc, tuple(f for f in findings if f.severity != "error"))
+
+
+def _build(doc: Document, spec: RobotSpec, ranges: dict[str, Range]) -> tuple[Robot, list[Finding]]:
     builder = Builder(doc, spec, ranges)
     robot = builder.build()
-    problems += builder.findings
+    problems = list(builder.findings)
     if spec.require_sources:
         problems += missing_sources(doc, spec)
     digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()
-    robot = replace(robot, spec_hash=digest, extras={"ranges": ranges})
-    findings = run_rules(robot, stage="input") if rules else []
-    problems += errors(findings)
-    if problems:
-        raise InputError(_ordered(problems))
-    return Loaded(robot, spec, doc, tuple(f for f in findings if f.severity != "error"))
+    return replace(robot, spec_hash=digest, extras={"ranges": ranges}), problems
+
+
+# -- every problem in one run --------------------------------------------------------------
+#
+# A schema error used to end the run before the model was built, so a spec with a wrong unit
+# and a bad group reference needed two runs. When every schema error is a quantity that could
+# not be read (or an unknown key), the model can still be built: each bad quantity is replaced
+# by a stand-in and the key is dropped. The rules then judge a model that is partly made up,
+# so a finding is kept only when it cannot come from a stand-in:
+# - it is not located in an element (a link, a joint, a part, ...) that holds a bad value,
+#   which is where a wrong value cascades ("3 kg" as a length must not also be "zero size");
+# - it is the same with two different stand-ins, which drops the findings that a bad value
+#   causes in another element (a wrong wheel offset changes the diff-drive separation).
+
+_STAND_INS = (0.0, 0.123)  # SI magnitudes: zero, and a small value plausible for every kind
+
+
+def _rules_despite(exc: ValidationError, doc: Document, ranges: dict[str, Range]) -> list[Finding]:
+    bad: list[Path_] = []
+    drop: list[Path_] = []
+    for err in exc.errors(include_url=False):
+        path = data_path(doc.data, tuple(err["loc"]))
+        if _QUANTITY.fullmatch(err["type"]):
+            bad.append(path)
+        elif err["type"] == "extra_forbidden":
+            drop.append(path)
+        else:
+            return []  # a missing key, a bad name, a wrong shape: no model to judge
+    runs: list[list[Finding]] = []
+    for si in _STAND_INS:
+        data = _patched(doc.data, bad, drop, Measured(si, "(stand-in)", "stand-in", "(stand-in)"))
+        try:
+            spec = RobotSpec.model_validate(data, context={"ranges": ranges})
+        except ValidationError:
+            return []
+        robot, built = _build(doc, spec, ranges)
+        every_bad = [*bad, *drop, *_bad_paths(doc, built)]
+        judged = [f for f in run_rules(robot, stage="input") if not _inside(f, doc, every_bad)]
+        runs.append(errors([*built, *judged]))
+    again = {_key(f) for f in runs[1]}
+    return [f for f in runs[0] if _key(f) in again]
+
+
+_QUANTITY = re.compile(r"UNIT\d{3}")
+
+
+def _key(f: Finding) -> tuple[str, str, int, int, str]:
+    return (f.code, f.where.file, f.where.line, f.where.col, f.message)
+
+
+def _patched(data: Any, bad: list[Path_], drop: list[Path_], stand_in: Measured) -> Any:
+    out = copy.deepcopy(data)
+    for path, remove in [*((p, False) for p in bad), *((p, True) for p in drop)]:
+        if not path:
+            continue
+        parent = out
+        try:
+            for key in path[:-1]:
+                parent = parent[key]
+            if remove:
+                del parent[path[-1]]
+            else:
+                parent[path[-1]] = stand_in
+        except (KeyError, IndexError, TypeError):
+            continue  # the path is not in the data (pydantic's loc named a validator)
+    return out
+
+
+def _bad_paths(doc: Document, built: list[Finding]) -> list[Path_]:
+    """YAML paths of the values the builder could not convert (its UNIT findings)."""
+    by_mark = {v: p for p, v in doc.value_marks.items()}
+    out: list[Path_] = []
+    for f in built:
+        if _QUANTITY.fullmatch(f.code):
+            path = by_mark.get((f.where.line, f.where.col))
+            if path is not None:
+                out.append(path)
+    return out
+
+
+def _element(path: Path_) -> Path_:
+    """The element that holds the value at ``path``: up to its first list index
+    (``links.3``, ``ros2_control.joints.2``), or its top-level section."""
+    for i, key in enumerate(path):
+        if isinstance(key, int):
+            return path[: i + 1]
+    return path[:1]
+
+
+def _inside(f: Finding, doc: Document, bad: list[Path_]) -> bool:
+    """Whether ``f`` is located in the YAML lines of an element that holds a bad value."""
+    if f.where.file != doc.file or not f.where.line:
+        return False
+    for path in bad:
+        element = _element(path)
+        lines = [line for p, (line, _) in doc.value_marks.items() if p[: len(element)] == element]
+        lines += [line for p, (line, _) in doc.key_marks.items() if p[: len(element)] == element]
+        if lines and min(lines) <= f.where.line <= max(lines):
+            return True
+    return False
+
+
+def _unique(findings: list[Finding]) -> list[Finding]:
+    return list(dict.fromkeys(findings))
 
 
 def _ordered(findings: list[Finding]) -> list[Finding]:

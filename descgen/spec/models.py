@@ -389,6 +389,9 @@ class ControlJointSpec(Base):
     state: list[Literal["position", "velocity", "acceleration", "effort"]] = []
     initial_position: Raw | None = None
     on_limit: Literal["reject", "clip"] = "reject"
+    # Jazzy's ros2_control <joint mimic="...">: unset, a URDF <mimic> joint is a mimic joint
+    # (state from its leader, no command interface); false: an ordinary joint
+    mimic: bool | None = None
     source: Source | None = None
 
 
@@ -400,11 +403,42 @@ class HardwareSpec(Base):
 ParamValue = Any
 
 
+class CalibratedSpec(Base):
+    """A value measured on the robot (odometry calibration), with its source; checked
+    against the URDF-derived value within ``tolerance`` (default 5 mm; CTRL006/CTRL051)."""
+
+    value: Size
+    source: Source
+    tolerance: Tolerance | None = None
+
+
+CALIBRATABLE = {"diff_drive_controller/DiffDriveController": ("wheel_separation", "wheel_radius")}
+
+
 class ControllerSpec(Base):
     name: Name
     type: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+$")]
     params: dict[str, ParamValue] = {}
+    calibrated: dict[str, CalibratedSpec] = {}
     source: Source | None = None
+
+    @model_validator(mode="after")
+    def _calibrated_known(self) -> ControllerSpec:
+        allowed = CALIBRATABLE.get(self.type, ())
+        for key in self.calibrated:
+            if key not in allowed:
+                raise error(
+                    "CTRL048",
+                    f"calibrated: '{key}' is not a calibratable parameter of {self.type}",
+                    "calibrated: takes wheel_separation and wheel_radius of diff_drive_controller/DiffDriveController",
+                )
+            if key in self.params:
+                raise error(
+                    "CTRL048",
+                    f"'{key}' is both in params and in calibrated",
+                    f"keep only calibrated.{key} (the value written to the controllers file)",
+                )
+        return self
 
 
 class Ros2ControlSpec(Base):

@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import mimic
 from ..findings import Finding, InputError, Where
 from ..kinematics import joint_transform
 from ..model import Robot
@@ -70,8 +71,9 @@ def plan(robot: Robot) -> Plan:
 
 
 def joint_values(robot: Robot, t: float) -> dict[str, float]:
-    """A slow, smooth motion inside every joint's limits."""
-    out = {}
+    """A slow, smooth motion inside every driving joint's limits; mimic joints follow their
+    leaders (GenericSystem computes their state, robot_state_publisher their transform)."""
+    out: dict[str, float] = {}
     for i, j in enumerate(robot.joints):
         if j.type == "continuous":
             out[j.name] = 2.0 * t
@@ -80,7 +82,7 @@ def joint_values(robot: Robot, t: float) -> dict[str, float]:
         ):
             mid, amp = (j.limit.lower + j.limit.upper) / 2, (j.limit.upper - j.limit.lower) / 4
             out[j.name] = mid + amp * math.sin(0.5 * t + i)
-    return out
+    return mimic.resolve(robot, out)
 
 
 def write(

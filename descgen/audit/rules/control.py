@@ -4,37 +4,24 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterator
+from typing import cast
 
+from ...control.claims import JOINT_PARAMS, claims_of, split
 from ...findings import Finding
-from ...model import Controller, Robot
+from ...model import ControlJoint, Controller, HardwareBlock, Robot
 from ..registry import at, rule
+
+_SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
 
 
 def claims(c: Controller) -> list[tuple[str, str]]:
-    """(joint, command interface) pairs a controller claims when active (Jazzy ros2_controllers)."""
-    t = c.type.split("/")[0]
-    if t == "joint_trajectory_controller":
-        return [(str(j), str(i)) for j in _list(c.param("joints")) for i in _list(c.param("command_interfaces"))]
-    if t == "diff_drive_controller":
-        wheels = [*_list(c.param("left_wheel_names")), *_list(c.param("right_wheel_names"))]
-        return [(str(w), "velocity") for w in wheels]
-    if t == "forward_command_controller" or t.endswith("forward_controller"):
-        iface = c.param("interface_name")
-        return [(str(j), str(iface)) for j in _list(c.param("joints"))]
-    return []
+    """(component, command interface) pairs a controller claims when active (control/claims.py)."""
+    return [split(k) for k in claims_of(c).command]
 
 
 def state_reads(c: Controller) -> list[tuple[str, str]]:
-    t = c.type.split("/")[0]
-    if t == "joint_trajectory_controller":
-        return [(str(j), str(i)) for j in _list(c.param("joints")) for i in _list(c.param("state_interfaces"))]
-    if t == "diff_drive_controller":
-        if c.param("open_loop") is True:
-            return []
-        iface = "velocity" if c.param("position_feedback") is False else "position"
-        wheels = [*_list(c.param("left_wheel_names")), *_list(c.param("right_wheel_names"))]
-        return [(str(w), iface) for w in wheels]
-    return []
+    """(component, state interface) pairs a controller reads when active (control/claims.py)."""
+    return [split(k) for k in claims_of(c).state]
 
 
 def _list(v: object) -> list[object]:
@@ -88,6 +75,8 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
         return
     cmd = {(cj.name, i.name) for cj in rc.joints for i in cj.command}
     state = {(cj.name, i.name) for cj in rc.joints for i in cj.state}
+    state |= {(s.name, i.name) for s in rc.sensors for i in s.state}
+    sensors = {s.name for s in rc.sensors}
     for c in rc.controllers:
         for joint, iface in claims(c):
             if (joint, iface) not in cmd:
@@ -98,15 +87,29 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
                     f"add command: [{iface}] to ros2_control joint '{joint}', or fix the controller",
                     subject=f"controller:{c.name}",
                 )
-        for joint, iface in state_reads(c):
-            if (joint, iface) not in state:
-                yield at(
-                    "CTRL002",
-                    c,
-                    f"controller '{c.name}' reads state '{joint}/{iface}', which the hardware does not export",
-                    f"add state: [{iface}] to ros2_control joint '{joint}'",
-                    subject=f"controller:{c.name}",
-                )
+        missing_sensor = set()
+        for comp, iface in state_reads(c):
+            if (comp, iface) in state:
+                continue
+            if c.type.startswith(_SENSOR_BROADCASTERS) and comp not in sensors:
+                missing_sensor.add(comp)  # one finding per absent sensor, not ten per interface
+                continue
+            yield at(
+                "CTRL002",
+                c,
+                f"controller '{c.name}' reads state '{comp}/{iface}', which the hardware does not export",
+                f"add state: [{iface}] to ros2_control {'sensor' if comp in sensors else 'joint'} '{comp}'",
+                subject=f"controller:{c.name}",
+            )
+        for comp in sorted(missing_sensor):
+            yield at(
+                "CTRL002",
+                c,
+                f"controller '{c.name}' reads sensor '{comp}', which is not a <sensor> of ros2_control",
+                "fix sensor_name, or add the <sensor> with its state interfaces to the ros2_control block"
+                + (f" (sensors: {', '.join(sorted(sensors))})" if sensors else ""),
+                subject=f"controller:{c.name}",
+            )
 
 
 @rule("CTRL003", "no-joint-state-broadcaster", "warning")
@@ -180,15 +183,37 @@ def control_joint_listed_twice(robot: Robot) -> Iterator[Finding]:
         seen.add(cj.name)
 
 
+# A calibrated wheel_separation/wheel_radius differs from the CAD by tyre squash and wear:
+# millimetres. Beyond this (or the stated tolerance) it is worth a look, not an error.
+DEFAULT_CALIBRATION_TOLERANCE = 0.005  # m
+# factors a value typed in the wrong unit is off by: mm, cm or dm taken as m, or the reverse
+UNIT_SLIPS = (1000.0, 100.0, 10.0, 0.1, 0.01, 0.001)
+
+
+def unit_slip(value: float, derived: float) -> float | None:
+    """The unit-slip factor (within 10 %) that turns ``derived`` into ``value``, if any."""
+    if derived <= 0 or value <= 0:
+        return None
+    return next((f for f in UNIT_SLIPS if abs(value / (derived * f) - 1.0) <= 0.1), None)
+
+
 @rule("CTRL006", "diff-drive-geometry-disagrees", "error")
 def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
     """## What it does
     Derives `wheel_separation` and `wheel_radius` from the wheel joints and wheel
-    geometry, and flags a diff_drive_controller whose values disagree (or whose wheels
-    cannot give them).
+    geometry, and flags a diff_drive_controller whose wheels cannot give them, a spec that
+    repeats them as plain parameters, or a value (a spec's `calibrated:` entry or an
+    audited controllers file's parameter) off by a unit slip (x10, x100, x1000 or the
+    inverse) from the URDF. A difference beyond the tolerance that is not a unit slip is
+    CTRL051.
     ## Why is this bad?
-    Odometry scales with both: a radius typed twice and changed once makes the robot
-    believe it drove further than it did, and the map smears.
+    Odometry scales with both: a radius typed in millimetres as metres makes the robot
+    believe it drove a thousand times further than it did, and the map smears.
+    ## Example
+    `wheel_radius: 100` for a 0.1 m wheel.
+    ## Use instead
+    `calibrated: {wheel_radius: {value: "0.0985 m", source: "odometry calibration 2024-05"}}`
+    in the spec, or the value in metres in the controllers file.
     """
     from ...derive import diff_drive_geometry
 
@@ -207,18 +232,89 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
                 "fix the wheel joints or their collision geometry",
                 subject=f"controller:{c.name}",
             )
+    yield from (f for f in _wheel_values(robot) if f.code == "CTRL006")
+
+
+def _wheel_values(robot: Robot) -> Iterator[Finding]:
+    """CTRL006 (unit slip, repeated in a spec) and CTRL051 (beyond tolerance) findings."""
+    from ...derive import diff_drive_geometry
+
+    rc = robot.ros2_control
+    for c in rc.controllers if rc is not None else ():
+        if not c.type.startswith("diff_drive_controller/"):
+            continue
+        geo = diff_drive_geometry(robot, c)
         for key, derived in (("wheel_separation", geo.wheel_separation), ("wheel_radius", geo.wheel_radius)):
-            given = c.param(key)
-            if given is None or derived is None:
-                continue
-            if not isinstance(given, int | float) or abs(float(given) - derived) > 1e-9 * max(1.0, abs(derived)):
-                yield at(
-                    "CTRL006",
-                    c,
-                    f"controller '{c.name}' {key} is {given} but the URDF gives {derived:.9g} m",
-                    f"remove {key} from the spec: descgen derives it from the URDF",
-                    subject=f"controller:{c.name}",
-                )
+            if derived is not None:
+                yield from _wheel_value(robot, c, key, derived)
+
+
+def _wheel_value(robot: Robot, c: Controller, key: str, derived: float) -> Iterator[Finding]:
+    """One wheel parameter against the URDF: a spec's calibrated value, a spec's plain
+    parameter (descgen derives it), or an audited file's parameter."""
+    spec = robot.spec_hash is not None
+    cal = next((x for x in c.calibrated if x.param == key), None)
+    given = c.param(key)
+    subject = f"controller:{c.name}"
+    if cal is None and given is None:
+        return
+    if cal is None and spec:
+        yield at(
+            "CTRL006",
+            c,
+            f"controller '{c.name}' {key} is {given} but the URDF gives {derived:.9g} m",
+            f"remove {key} from params: descgen derives it from the URDF; a measured value goes under "
+            f"calibrated: {{{key}: {{value: ..., source: ...}}}}",
+            subject=subject,
+        )
+        return
+    if cal is not None:
+        value, tol, elem = cal.value, cal.tolerance or DEFAULT_CALIBRATION_TOLERANCE, cast(object, cal)
+        fix = f"fix calibrated.{key} of controller '{c.name}' in the spec (a length, e.g. \"{derived:.4g} m\")"
+    elif isinstance(given, int | float) and not isinstance(given, bool):
+        value, tol, elem = float(given), DEFAULT_CALIBRATION_TOLERANCE, c
+        fix = f"set {key} in {c.where.file} to the robot's value in metres (the URDF gives {derived:.6g} m)"
+    else:
+        yield at(
+            "CTRL006", c, f"controller '{c.name}' {key} is {given!a}, not a number", "write metres", subject=subject
+        )
+        return
+    if abs(value - derived) <= tol + 1e-12:
+        return
+    slip = unit_slip(value, derived)
+    shown = f"controller '{c.name}' {key} is {value:.6g} m but the URDF gives {derived:.6g} m"
+    if slip is not None:
+        yield at(
+            "CTRL006", elem, f"{shown}: {slip:g} times it, a unit slip (mm, cm or dm for m?)", fix, subject=subject
+        )
+    else:
+        yield at(
+            "CTRL051",
+            elem,
+            f"{shown}: {abs(value - derived) * 1000:.3g} mm apart, beyond the {tol * 1000:.3g} mm tolerance",
+            f"recheck the calibration and the wheel geometry in the URDF; {fix}"
+            if cal is not None
+            else f"recheck the calibration and the wheel geometry in the URDF, or {fix}",
+            subject=subject,
+        )
+
+
+@rule("CTRL051", "calibrated-wheel-value-off", "warning")
+def calibrated_wheel_value_off(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Reported by CTRL006's check: a diff_drive_controller `wheel_separation`/`wheel_radius`
+    (calibrated in the spec, or set in an audited controllers file) differs from the URDF
+    value by more than the tolerance (default 5 mm), but not by a unit slip.
+    ## Why is this bad?
+    Calibration moves these by millimetres (tyre squash, wear, contact patch). Centimetres
+    mean the calibration or the URDF's wheel placement is wrong, and odometry or the
+    displayed robot is off by as much.
+    ## Example
+    URDF wheels 0.40 m apart, `wheel_separation: 0.43`.
+    ## Use instead
+    A value within the tolerance, or a stated `tolerance:` with the calibration's source.
+    """
+    yield from (f for f in _wheel_values(robot) if f.code == "CTRL051")
 
 
 @rule("CTRL007", "update-rate-not-whole", "error")
@@ -288,8 +384,8 @@ def command_limit_beyond_urdf(robot: Robot) -> Iterator[Finding]:
 @rule("CTRL009", "controller-names-unknown-joint", "error")
 def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Finds controllers whose joint lists (`joints`, `left_wheel_names`, `right_wheel_names`)
-    name joints the URDF does not have.
+    Finds controllers whose joint parameters (`joints`, `command_joints`, a gripper's
+    `joint`, `left_wheel_names`, `right_wheel_names`) name joints the URDF does not have.
     ## Why is this bad?
     The controller fails to configure on the robot; nothing moves.
     """
@@ -297,7 +393,9 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
     if rc is None:
         return
     for c in rc.controllers:
-        for key in ("joints", "left_wheel_names", "right_wheel_names"):
+        # an unknown type's `joint` may mean something else; its joint lists are still joints
+        keys = JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
+        for key in keys:
             for name in _list(c.param(key)):
                 if robot.joint(str(name)) is None:
                     yield at(
@@ -339,3 +437,354 @@ def broadcaster_fed_from_commands(robot: Robot) -> Iterator[Finding]:
                     "broadcast state interfaces only; publish desired values on their own topic",
                     subject=f"controller:{c.name}",
                 )
+
+
+# -- Jazzy's ros2_control rules (docs/ros2_control_jazzy.md; hardware_interface/src/component_parser.cpp
+#    at the jazzy branch, parse_control_resources_from_urdf and parse_component_from_xml) ------------
+
+
+def _in_spec(robot: Robot) -> bool:
+    """A spec's model (hints say what to edit in the spec) or a read file (hints name its XML)."""
+    return robot.spec_hash is not None
+
+
+def mimic_attribute(cj: ControlJoint) -> bool | None:
+    """The ``mimic`` attribute as Jazzy's parse_bool reads it: true/false in any case; None
+    when absent (NOT_SET). Anything else throws std::invalid_argument (CTRL043)."""
+    if cj.mimic is None:
+        return None
+    return {"true": True, "false": False}.get(cj.mimic.lower())  # parse_bool lowercases, never strips
+
+
+def _valid_attribute(cj: ControlJoint) -> bool:
+    return cj.mimic is None or cj.mimic.lower() in ("true", "false")
+
+
+def active_mimic(robot: Robot, cj: ControlJoint) -> bool:
+    """Jazzy treats a ros2_control joint as a mimic joint when its URDF joint has <mimic>
+    and the attribute is not false."""
+    j = robot.joint(cj.name)
+    return j is not None and j.mimic is not None and _valid_attribute(cj) and mimic_attribute(cj) is not False
+
+
+@rule("CTRL040", "mimic-joint-commanded", "error")
+def mimic_joint_commanded(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a ros2_control joint that is a URDF `<mimic>` joint (its `mimic` attribute not
+    `false`) and has command interfaces.
+    ## Why is this bad?
+    Jazzy's parser refuses the whole description: "Joint 'j' has mimic attribute not set to
+    false: Activated mimic joints cannot have command interfaces." The controller_manager
+    loads no hardware and nothing moves. ros2_control sets a mimic joint's state from its
+    leader (`multiplier * leader + offset`); only the leader is commanded.
+    ## Example
+    `<joint name="finger_left_joint"><command_interface name="position"/>...` where the URDF
+    joint has `<mimic joint="finger_right_joint"/>`.
+    ## Use instead
+    State interfaces only on the mimic joint, or `mimic="false"` on the ros2_control joint to
+    drive it as an ordinary joint.
+    """
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        if not cj.command or not active_mimic(robot, cj):
+            continue
+        leader = robot.joint(cj.name).mimic.joint  # type: ignore[union-attr]
+        commands = ", ".join(i.name for i in cj.command)
+        hint = (
+            f"remove command: [{commands}] from ros2_control joint '{cj.name}' (its state follows '{leader}'), "
+            "or set mimic: false on it to command it on its own"
+            if _in_spec(robot)
+            else f"remove its <command_interface>s (ros2_control sets its state from '{leader}'), "
+            'or add mimic="false" to the ros2_control <joint> to command it on its own'
+        )
+        yield at(
+            "CTRL040",
+            cj,
+            f"mimic joint '{cj.name}' has command interfaces ({commands}); Jazzy refuses it: "
+            "Activated mimic joints cannot have command interfaces",
+            hint,
+            subject=f"ros2_control:{cj.name}",
+        )
+
+
+@rule("CTRL041", "mimic-attribute-without-urdf-mimic", "error")
+def mimic_attribute_without_urdf_mimic(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a ros2_control joint with `mimic="true"` whose URDF joint has no `<mimic>`.
+    ## Why is this bad?
+    Jazzy's parser refuses the description: "Joint 'j' has no mimic information in the URDF".
+    Since hardware_interface 4.13 the relation comes only from the URDF `<mimic>` element.
+    ## Example
+    `<joint name="finger_left_joint" mimic="true">` and a URDF joint without `<mimic>`.
+    ## Use instead
+    Add `<mimic joint="leader" multiplier="..." offset="..."/>` to the URDF joint, or drop the
+    attribute.
+    """
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        j = robot.joint(cj.name)
+        if j is not None and j.mimic is None and _valid_attribute(cj) and mimic_attribute(cj) is True:
+            yield at(
+                "CTRL041",
+                cj,
+                f"ros2_control joint '{cj.name}' says mimic=\"true\" but URDF joint '{cj.name}' has no <mimic>; "
+                "Jazzy refuses it: no mimic information in the URDF",
+                'add <mimic joint="LEADER" multiplier="..." offset="..."/> to the URDF joint, '
+                "or remove the mimic attribute",
+                subject=f"ros2_control:{cj.name}",
+            )
+
+
+@rule("CTRL042", "mimic-leader-outside-block", "error")
+def mimic_leader_outside_block(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a mimic joint under ros2_control whose leader (the `<mimic joint=...>`) is not a
+    joint of the same `<ros2_control>` block.
+    ## Why is this bad?
+    Jazzy's parser refuses the description: "Mimic joint 'leader' not found in <ros2_control>
+    tag". The hardware copies the leader's state, so it must own the leader.
+    ## Example
+    `finger_left_joint` (mimics `finger_right_joint`) under ros2_control, `finger_right_joint`
+    not, or in another block.
+    ## Use instead
+    Put the leader in the same block (with its command interface), or set `mimic="false"`
+    and give the follower its own hardware.
+    """
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        if not active_mimic(robot, cj):
+            continue
+        leader = robot.joint(cj.name).mimic.joint  # type: ignore[union-attr]
+        if any(o.name == leader and o.block == cj.block for o in rc.joints):  # type: ignore[union-attr]
+            continue
+        yield at(
+            "CTRL042",
+            cj,
+            f"mimic joint '{cj.name}' follows '{leader}', which is not a joint of the same <ros2_control> block; "
+            f"Jazzy refuses it: Mimic joint '{leader}' not found in <ros2_control> tag",
+            f"add '{leader}' to the ros2_control joints"
+            + ("" if _in_spec(robot) else " of the same block")
+            + (" or set mimic: false" if _in_spec(robot) else ', or set mimic="false" on this joint'),
+            subject=f"ros2_control:{cj.name}",
+        )
+
+
+@rule("CTRL043", "mimic-attribute-invalid", "error")
+def mimic_attribute_invalid(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a ros2_control `<joint mimic="...">` whose value is not `true` or `false`.
+    ## Why is this bad?
+    Jazzy reads it with parse_bool, which accepts only true/false (any case) and throws
+    std::invalid_argument otherwise; the parser does not catch it, so loading fails.
+    ## Example
+    `mimic="1"`, `mimic="yes"`.
+    ## Use instead
+    `mimic="true"` or `mimic="false"`, or no attribute.
+    """
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        if not _valid_attribute(cj):
+            yield at(
+                "CTRL043",
+                cj,
+                f"ros2_control joint '{cj.name}' has mimic={cj.mimic!a}; Jazzy accepts only true or false",
+                'write mimic="true" or mimic="false" (or leave it out: a URDF <mimic> joint is then a mimic joint)',
+                subject=f"ros2_control:{cj.name}",
+            )
+
+
+@rule("CTRL044", "pre-jazzy-mimic-params", "error")
+def pre_jazzy_mimic_params(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds `<param name="mimic">` or `<param name="multiplier">` inside a ros2_control `<joint>`.
+    ## Why is this bad?
+    That syntax was removed in hardware_interface 4.13.0 (ros2_control #1553, before Jazzy):
+    Jazzy keeps the params but no longer makes the joint a mimic joint, so its state never
+    follows the leader (a gripper finger stays at zero in RViz and MoveIt).
+    ## Example
+    `<joint name="left_finger"><param name="mimic">right_finger</param>...`
+    ## Use instead
+    The URDF `<mimic joint="right_finger" multiplier="1" offset="0"/>` on the URDF joint, and
+    no command interface on the ros2_control joint.
+    """
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        names = [k for k, _ in cj.params if k in ("mimic", "multiplier")]
+        if names:
+            leader = dict(cj.params).get("mimic", "LEADER")
+            yield at(
+                "CTRL044",
+                cj,
+                f"ros2_control joint '{cj.name}' has <param name=\"{names[0]}\">, which Jazzy no longer reads "
+                "(removed in hardware_interface 4.13): the joint does not follow its leader",
+                f'remove the mimic/multiplier/offset params and add <mimic joint="{leader}" multiplier="..." '
+                'offset="..."/> to the URDF joint',
+                subject=f"ros2_control:{cj.name}",
+            )
+
+
+def _blocks(robot: Robot) -> tuple[HardwareBlock, ...]:
+    rc = robot.ros2_control
+    if rc is None:
+        return ()
+    return rc.blocks or (HardwareBlock(rc.name, rc.plugin, rc.params, rc.where),)
+
+
+# plugin -> Jazzy replacement, for hardware plugins Jazzy no longer has
+REMOVED_PLUGINS = {
+    "fake_components/GenericSystem": "mock_components/GenericSystem",
+    "gazebo_ros2_control/GazeboSystem": "gz_ros2_control/GazeboSimSystem",
+}
+REMOVED_HW_PARAMS = {"fake_sensor_commands": "mock_sensor_commands", "fake_gpio_commands": "mock_gpio_commands"}
+CLASSIC_SIM_PLUGINS = ("libgazebo_ros2_control.so", "gazebo_ros2_control")
+
+
+@rule("CTRL045", "hardware-plugin-not-in-jazzy", "error")
+def hardware_plugin_not_in_jazzy(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a `<hardware><plugin>` that Jazzy does not have: `fake_components/GenericSystem`
+    (removed in hardware_interface 4.0.0, #1150) or Gazebo Classic's
+    `gazebo_ros2_control/GazeboSystem` (gazebo_ros2_control is not released for Jazzy).
+    ## Why is this bad?
+    The resource manager cannot load the plugin, so no hardware component starts and every
+    controller fails to activate.
+    ## Example
+    `<plugin>fake_components/GenericSystem</plugin>`
+    ## Use instead
+    `mock_components/GenericSystem`; for simulation `gz_ros2_control/GazeboSimSystem` with
+    the `gz_ros2_control-system` Gazebo plugin.
+    """
+    for b in _blocks(robot):
+        new = REMOVED_PLUGINS.get(b.plugin)
+        if new is None:
+            continue
+        where = "hardware: plugin in the spec" if _in_spec(robot) else "<hardware><plugin>"
+        yield at(
+            "CTRL045",
+            b,
+            f"ros2_control '{b.name}' uses the plugin {b.plugin}, which Jazzy does not have",
+            f"write {new} as the {where}"
+            + (" and load gz_ros2_control-system in <gazebo>" if new.startswith("gz_") else ""),
+            subject=f"ros2_control:{b.name}",
+        )
+
+
+@rule("CTRL046", "generic-system-param-renamed", "warning")
+def generic_system_param_renamed(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds GenericSystem parameters renamed before Jazzy: hardware params
+    `fake_sensor_commands`/`fake_gpio_commands`, and joint-level `initial_<interface>` params.
+    ## Why is this bad?
+    GenericSystem looks up only the names it knows, so these are silently ignored (4.0.0,
+    #1150): the sensor gets no mock command interface, the joint starts at 0 instead of the
+    intended position.
+    ## Example
+    `<param name="fake_sensor_commands">true</param>`, `<param name="initial_position">0.5</param>`
+    in a `<joint>`.
+    ## Use instead
+    `mock_sensor_commands`/`mock_gpio_commands`; `<param name="initial_value">` inside the
+    `<state_interface>`.
+    """
+    for b in _blocks(robot):
+        for k, _ in b.params:
+            if k in REMOVED_HW_PARAMS:
+                yield at(
+                    "CTRL046",
+                    b,
+                    f"ros2_control '{b.name}' sets {k}, which Jazzy's GenericSystem ignores",
+                    f"rename it {REMOVED_HW_PARAMS[k]}",
+                    subject=f"ros2_control:{b.name}",
+                )
+    rc = robot.ros2_control
+    for cj in rc.joints if rc is not None else ():
+        for k, _ in cj.params:
+            if k.startswith("initial_") and k != "initial_value":
+                iface = k.removeprefix("initial_")
+                yield at(
+                    "CTRL046",
+                    cj,
+                    f"ros2_control joint '{cj.name}' sets <param name=\"{k}\">, which Jazzy's GenericSystem ignores",
+                    f'move it into <state_interface name="{iface}"> as <param name="initial_value">',
+                    subject=f"ros2_control:{cj.name}",
+                )
+
+
+@rule("CTRL047", "gazebo-classic-plugin", "warning")
+def gazebo_classic_plugin(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a `<gazebo><plugin filename="libgazebo_ros2_control.so">` (Gazebo Classic's
+    gazebo_ros2_control) in a description with ros2_control.
+    ## Why is this bad?
+    Jazzy pairs with Gazebo Harmonic; gazebo_ros2_control is not released for Jazzy, so in
+    simulation no controller_manager starts and the robot never moves.
+    ## Example
+    `<plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">`
+    ## Use instead
+    `<plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">`
+    with `<parameters>` naming the controllers file.
+    """
+    rc = robot.ros2_control
+    for filename, where in rc.sim_plugins if rc is not None else ():
+        if filename.rsplit("/", 1)[-1] in CLASSIC_SIM_PLUGINS:
+            yield Finding(
+                "CTRL047",
+                "warning",
+                f"<gazebo> loads {filename} (Gazebo Classic), which Jazzy does not have",
+                'use <plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">',
+                "gazebo",
+                where,
+            )
+
+
+@rule("CTRL049", "controller-claims-unchecked", "warning")
+def controller_claims_unchecked(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Names a controller whose type descgen does not know, so the interfaces it claims could
+    not be checked against the hardware.
+    ## Why is this bad?
+    A typo in its joint or interface names would only show when the controller fails to
+    activate on the robot. (A misspelt type is also unknown to pluginlib.)
+    ## Example
+    `type: my_controllers/WristController`, or `position_controller/GripperActionController`.
+    ## Use instead
+    Check the type against the plugin XMLs of ros2_controllers; for your own controller,
+    check its joints and interfaces by hand.
+    """
+    rc = robot.ros2_control
+    for c in rc.controllers if rc is not None else ():
+        if not claims_of(c).known:
+            yield at(
+                "CTRL049",
+                c,
+                f"controller '{c.name}' has type {c.type}, whose claims descgen does not know: "
+                "its joints and interfaces were not checked",
+                "check the type's spelling (plugin XMLs of ros2_controllers) and its interfaces by hand",
+                subject=f"controller:{c.name}",
+            )
+
+
+@rule("CTRL050", "controller-params-refused", "error")
+def controller_params_refused(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a controller missing a parameter its type requires (JTC `joints`,
+    `command_interfaces`, `state_interfaces`; a gripper's `joint`; the IMU and
+    force-torque broadcasters' `sensor_name`/`frame_id`), or a force-torque broadcaster with
+    both or neither of `sensor_name` and `interface_names`.
+    ## Why is this bad?
+    The controller refuses to configure (generate_parameter_library validation or its
+    on_configure), so it never claims anything and never runs.
+    ## Example
+    `position_controllers/GripperActionController` without `joint`.
+    ## Use instead
+    Set the parameter (see the type's `*_parameters.yaml` in ros2_controllers, jazzy branch).
+    """
+    rc = robot.ros2_control
+    for c in rc.controllers if rc is not None else ():
+        for problem in claims_of(c).problems:
+            yield at(
+                "CTRL050",
+                c,
+                f"controller '{c.name}' ({c.type}): {problem}",
+                "set it in the controller's params",
+                subject=f"controller:{c.name}",
+            )

@@ -6,6 +6,7 @@ from collections.abc import Callable, Iterator
 
 import numpy as np
 
+from ...extent import half_trace_by_span, moment_by_shapes, robot_span
 from ...findings import Finding, Severity
 from ...model import Link, Robot
 from ..registry import at, rule
@@ -266,3 +267,64 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
                 "check the inertial origin (frame and unit)",
                 subject=lk.subject,
             )
+
+
+GEOMETRY_MARGIN = 2.0  # a moment over twice the shell bound: the material would reach 1.4x beyond every shape
+SPAN_MARGIN = 3.0  # the whole-robot bound is loose already; only unit slips land beyond it
+
+
+@rule("INER011", "inertia-too-large-for-size", "error")
+def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Checks each principal moment against the largest value the link's mass could give:
+    all of it at the farthest point of the link's own visual and collision primitives from
+    that axis (m * r_max^2). A moment over twice that bound is reported. A link whose
+    shapes include a mesh (extent unknown) or that has none is checked against the whole
+    robot instead: half the trace (the sum of m r^2) over three times m * span^2, where the
+    span is the diagonal of the box around every link frame and primitive at zero pose.
+    ## Why is this bad?
+    No body fits a larger tensor into that space: the tensor is in the wrong unit
+    (kg*cm^2 or g*mm^2 written as kg*m^2), copied from a bigger part, or the mass is too
+    small. Simulators then turn the link far too sluggishly and controllers tuned on it
+    misbehave on the real robot; urdfdom and every parser accept it.
+    ## Example
+    A caster, a 0.3 kg sphere of 30 mm radius, with ixx = iyy = izz = 0.2 kg*m^2: the
+    bound about any axis is 0.3 * 0.03^2 = 2.7e-4.
+    ## Use instead
+    The tensor of the part (CAD, or computed from the collision shape: `from: collision`
+    in a spec), in kg*m^2.
+    """
+    moving = own_bodies(robot)
+    span: list[float] = []  # the robot's span, computed once and only when a link needs it
+    for lk in robot.links:
+        i = lk.inertial
+        if i is None or i.inertia is None or i.mass is None or i.mass <= MASSLESS:
+            continue
+        found = moment_by_shapes(lk)
+        if found is not None:
+            if found.ratio <= GEOMETRY_MARGIN:
+                continue
+            why = (
+                f"principal moment {found.moment:.3g} kg*m^2 is {found.ratio:.3g} times the most its mass can "
+                f"give inside its shapes ({found.bound:.3g}: all {i.mass:.4g} kg at {found.reach * 1000:.4g} mm "
+                "from the axis)"
+            )
+        else:
+            if not span:
+                span.append(robot_span(robot))
+            found = half_trace_by_span(lk, span[0])
+            if found is None or found.ratio <= SPAN_MARGIN:
+                continue
+            why = (
+                f"the sum of m r^2 ({found.moment:.3g} kg*m^2) is {found.ratio:.3g} times what {i.mass:.4g} kg "
+                f"gives at the span of the whole robot ({found.bound:.3g}: {found.reach:.3g} m; its own shapes "
+                "have no known size)"
+            )
+        yield at(
+            "INER011",
+            i,
+            f"link '{lk.name}' inertia is too large for its mass and size: {why}",
+            "check the tensor's unit (kg*m^2, not kg*cm^2 or g*mm^2) and the mass; recompute the tensor from the part",
+            severity=_severity(robot, lk, moving),
+            subject=lk.subject,
+        )

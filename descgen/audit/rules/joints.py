@@ -8,7 +8,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ...findings import Finding
-from ...model import Robot
+from ...model import Joint, Robot
 from ..registry import at, rule
 
 
@@ -163,6 +163,8 @@ def bad_mimic(robot: Robot) -> Iterator[Finding]:
             yield at("JOINT007", j, f"joint '{j.name}' mimics itself", "name the joint it follows")
         elif target is None:
             yield at("JOINT007", j, f"joint '{j.name}' mimics unknown joint '{j.mimic.joint}'", "fix the joint name")
+        elif target.mimic is not None and (stuck := _mimic_problem(robot, j)) is not None:
+            yield at("JOINT007", j, stuck, "remove the <mimic> of the joint that is really driven")
         elif target.mimic is not None:
             yield at(
                 "JOINT007",
@@ -172,6 +174,14 @@ def bad_mimic(robot: Robot) -> Iterator[Finding]:
             )
         elif target.type == "fixed":
             yield at("JOINT007", j, f"joint '{j.name}' mimics fixed joint '{target.name}'", "mimic a moving joint")
+
+
+def _mimic_problem(robot: Robot, j: Joint) -> str | None:
+    """Why no joint drives ``j``'s mimic chain (a cycle, a missing joint at its end), or None."""
+    from ...mimic import problem
+
+    found = problem(robot, j.name)
+    return found.message if found is not None and found.joint is j else None
 
 
 G = 9.80665
@@ -339,4 +349,50 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
                 other,
                 f"joints '{j.name}' and '{other.name}' mirror each other but their axes are {angle:.1f} deg apart",
                 f"check the axis of '{other.name}' (or of '{j.name}')",
+            )
+
+
+TRAVEL_FACTOR = 20.0  # a gantry rail may be several robots long; a mm-as-m slip is hundreds
+TRAVEL_FLOOR = 2.0  # metres: never flag a shorter travel
+_SPAN_FLOOR = 0.01  # metres: a robot of bare frames has no size to compare with
+
+
+@rule("JOINT020", "implausible-prismatic-travel", "error")
+def implausible_prismatic_travel(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Compares how far each prismatic joint moves its child from zero (the larger of |lower|
+    and |upper|) with the span of the whole robot: the diagonal of the box around every
+    link frame and primitive shape at zero pose. A travel over 2 m and over 20 times that
+    span is reported.
+    ## Why is this bad?
+    It is a millimetre value typed as metres: a gripper finger with `upper="40"` instead
+    of 0.04, a lift of 300 m. Every parser accepts it; planners then sample the finger
+    40 m away, ros2_control lets commands through the limit, and simulators throw the
+    link off the robot.
+    ## Example
+    `<limit lower="0" upper="40" .../>` on a finger of a 0.5 m arm.
+    ## Use instead
+    `<limit lower="0" upper="0.04" .../>` (metres); in a spec, write the unit: `upper: 40 mm`.
+    """
+    from ...extent import robot_span
+
+    travels = [
+        (j, lm, max(abs(lm.lower or 0.0), abs(lm.upper or 0.0)))
+        for j in robot.joints
+        if j.type == "prismatic" and (lm := j.limit) is not None
+    ]
+    if not any(t > TRAVEL_FLOOR for _, _, t in travels):
+        return  # the common case: no need to pose the robot
+    span = robot_span(robot)
+    if span < _SPAN_FLOOR:
+        return
+    for j, lm, travel in travels:
+        if travel > TRAVEL_FLOOR and travel > TRAVEL_FACTOR * span:
+            yield at(
+                "JOINT020",
+                lm if lm.where.line else j,
+                f"prismatic joint '{j.name}' travels {travel:.6g} m, {travel / span:.3g} times the span of the "
+                f"whole robot ({span:.3g} m)",
+                f"was the limit written in millimetres? {travel:.6g} mm is {travel / 1000:.6g} m",
+                subject=j.subject,
             )

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ...findings import Finding
-from ...model import Robot
+from ...model import Group, Robot
 from ..registry import at, rule
 
 
@@ -200,6 +200,7 @@ def srdf_robot_name_mismatch(robot: Robot) -> Iterator[Finding]:
 def group_state_joint_outside_group(robot: Robot) -> Iterator[Finding]:
     """## What it does
     Flags a named state that sets a joint outside its group, or leaves a group joint out.
+    A mimic joint needs no value: MoveIt sets it from its leader.
     ## Why is this bad?
     srdfdom does not check it; MoveIt then fills the missing joint with whatever it has.
     """
@@ -211,9 +212,12 @@ def group_state_joint_outside_group(robot: Robot) -> Iterator[Finding]:
     for st in sem.states:
         if st.group not in names:
             continue
-        members = {j.name for j in robot.group_joints(st.group) if j.type in ("revolute", "continuous", "prismatic")}
+        in_group = [j for j in robot.group_joints(st.group) if j.type in ("revolute", "continuous", "prismatic")]
+        # a mimic follower is set from its leader (RobotState::updateMimicJoints): it needs no value
+        members = {j.name for j in in_group if j.mimic is None}
+        followers = {j.name for j in in_group if j.mimic is not None}
         given = {n for n, _ in st.values}
-        extra = sorted(given - members - virtual)
+        extra = sorted(given - members - followers - virtual)
         missing = sorted(members - given)
         if extra:
             yield at(
@@ -230,4 +234,47 @@ def group_state_joint_outside_group(robot: Robot) -> Iterator[Finding]:
                 f"state '{st.name}' leaves out joints of group '{st.group}': {', '.join(missing)}",
                 "give a value for every joint of the group",
                 subject=f"group_state:{st.name}",
+            )
+
+
+def _own_joints(robot: Robot, g: Group) -> list[str]:
+    """The joints a group names itself (joint list, chains, links' parent joints), not its subgroups'."""
+    names = list(g.joints)
+    for base, tip in g.chains:
+        names += [j.name for j in robot.chain_joints(base, tip)]
+    names += [j.name for n in g.links if (j := robot.parent_joint(n)) is not None]
+    return list(dict.fromkeys(names))
+
+
+@rule("SRDF020", "passive-joint-in-group", "warning")
+def passive_joint_in_group(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a planning group that contains a joint the SRDF declares passive (in its joint
+    list, or through one of its chains or links).
+    ## Why is this bad?
+    MoveIt's JointModelGroup treats every non-mimic joint of a group as a variable to
+    plan, so the planner moves the passive joint; the TrajectoryExecutionManager then drops
+    passive joints from what it sends to the controllers. The robot executes a different
+    motion from the one that was checked for collisions, or the group cannot be executed
+    at all.
+    ## Example
+    `<passive_joint name="caster_joint"/>` and `<group name="base"><joint name="caster_joint"/></group>`.
+    ## Use instead
+    Leave passive joints out of planning groups (a chain that passes through one needs
+    its tip moved), or drop the `<passive_joint>` if the joint is actuated.
+    """
+    sem = robot.semantic
+    if sem is None or not sem.passive_joints:
+        return
+    passive = set(sem.passive_joints)
+    for g in sem.groups:
+        found = [name for name in _own_joints(robot, g) if name in passive]
+        if found:
+            yield at(
+                "SRDF020",
+                g,
+                f"group '{g.name}' contains passive joint(s) {', '.join(found)}: MoveIt plans them "
+                "but never sends them to a controller",
+                "remove them from the group, or drop the <passive_joint> if they are actuated",
+                subject=f"group:{g.name}",
             )

@@ -1,0 +1,915 @@
+"""The one catalogue of finding codes: every code any command can print, with its rationale.
+
+Audit rules register themselves with ``@rule`` (descgen/audit/registry.py) and their
+docstring is their documentation. Every other code (the spec loader, the readers,
+``generate``/``check``, ``control``, the recording commands, the command line) is a
+:class:`Code` entry below. :func:`explain` and :func:`entries` read both, so
+``descgen rules CODE`` and SARIF rule help cover every code.
+
+Codes are stable: a code keeps its meaning, and a retired code is never reused (keep
+its entry, marked retired). A code registered twice fails at import time, here or in
+``@rule``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Literal
+
+from .findings import Severity
+
+SeverityOrVaries = Severity | Literal["varies"]
+
+# Where a code comes from, in the order ``descgen rules`` lists them.
+GROUPS: dict[str, str] = {
+    "spec": "reading a spec (YAML, schema, units)",
+    "rule": "whole-model rules (validate, audit)",
+    "read": "reading third-party descriptions (URDF, Xacro, SRDF, controllers YAML)",
+    "generate": "generate and check (the proofs of the written package)",
+    "control": "descgen control (trajectory, options, the ros2_control model)",
+    "recording": "recordings (tf-audit, tf-scenario)",
+    "command": "the command line",
+}
+
+
+@dataclass(frozen=True)
+class Code:
+    """A finding code that is not an audit rule."""
+
+    code: str
+    name: str  # short kebab-case name
+    severity: SeverityOrVaries
+    group: str  # a key of GROUPS
+    summary: str  # one line: what it reports
+    rationale: str  # why it matters and what to do
+
+
+@dataclass(frozen=True)
+class Entry:
+    """What the catalogue knows about one code, rule or not."""
+
+    code: str
+    name: str
+    severity: SeverityOrVaries
+    group: str
+    summary: str
+    doc: str  # markdown: a rule's docstring, or the summary and rationale
+
+    @property
+    def is_rule(self) -> bool:
+        return self.group == "rule"
+
+
+CODES: dict[str, Code] = {}
+
+
+def register(*codes: Code) -> None:
+    """Add codes to the catalogue; a code or name registered twice is a bug, raised now."""
+    for c in codes:
+        if c.code in CODES:
+            raise ValueError(f"duplicate finding code {c.code}")
+        if any(other.name == c.name for other in CODES.values()):
+            raise ValueError(f"duplicate code name {c.name} ({c.code})")
+        if c.group not in GROUPS or c.group == "rule":
+            raise ValueError(f"code {c.code}: unknown group {c.group!r}")
+        if not c.summary.strip() or not c.rationale.strip():
+            raise ValueError(f"code {c.code} needs a summary and a rationale")
+        CODES[c.code] = c
+
+
+def _doc(c: Code) -> str:
+    return f"## What it reports\n{c.summary}\n\n## Why it matters\n{c.rationale}\n"
+
+
+def _rules() -> dict[str, Entry]:
+    from .audit.registry import iter_rules  # registers every rule module
+
+    return {
+        r.code: Entry(r.code, r.name, r.severity, "rule", r.summary or r.name, r.doc.strip() + "\n")
+        for r in iter_rules()
+    }
+
+
+def explain(code: str) -> Entry | None:
+    """The catalogue entry for ``code`` (an audit rule or a registered code), or None."""
+    return next((e for e in entries() if e.code == code), None)
+
+
+def entries() -> Iterator[Entry]:
+    """Every code, grouped as in GROUPS, then by code."""
+    both = dict(_rules())
+    for code, c in CODES.items():
+        both[code] = Entry(c.code, c.name, c.severity, c.group, c.summary, _doc(c))
+    order = list(GROUPS)
+    yield from sorted(both.values(), key=lambda e: (order.index(e.group), e.code))
+
+
+def C(  # noqa: N802 - a compact table row
+    code: str, name: str, severity: SeverityOrVaries, group: str, summary: str, rationale: str
+) -> Code:
+    return Code(code, name, severity, group, summary, " ".join(rationale.split()))
+
+
+# --------------------------------------------------------------------------- reading a spec
+register(
+    C(
+        "YAML001",
+        "yaml-unreadable",
+        "error",
+        "spec",
+        "The spec is not well-formed YAML, or uses YAML that is refused "
+        "(merge keys, non-scalar keys, unbuildable tags, too deep, too many nodes).",
+        """Nothing can be checked in a file that does not parse, and some YAML features (aliases that
+      expand exponentially, tags, merge keys) hide what a value really is. Fix the YAML at the given
+      line; write keys out instead of merging them.""",
+    ),
+    C(
+        "YAML002",
+        "spec-not-found",
+        "error",
+        "spec",
+        "The spec file (or a folder of specs) could not be read.",
+        """A missing or unreadable file is a typo in the path or a permission problem. Check the path;
+      a folder must hold *.yaml specs.""",
+    ),
+    C(
+        "YAML003",
+        "spec-not-text",
+        "error",
+        "spec",
+        "The spec is binary, not UTF-8, or larger than the size limit.",
+        """A spec is a few kilobytes of UTF-8 text; anything else is the wrong file, and reading a huge
+      one would exhaust memory (docs/security.md). Save the spec as UTF-8 text.""",
+    ),
+    C(
+        "YAML004",
+        "spec-empty",
+        "error",
+        "spec",
+        "The spec file is empty.",
+        """An empty file describes no robot. Write a spec (see specs/warehouse_arm.yaml).""",
+    ),
+    C(
+        "YAML010",
+        "spec-not-regular-file",
+        "error",
+        "spec",
+        "The named spec is a FIFO, device, socket or folder.",
+        """Reading a FIFO or a device can block forever or never end, so it is refused before it is
+      opened (docs/security.md). Name a regular file.""",
+    ),
+    C(
+        "SPEC001",
+        "unknown-key",
+        "error",
+        "spec",
+        "A key the spec schema does not know (usually a typo).",
+        """Unknown keys are errors, not ignored, because a misspelt key (`orgin:`) would silently drop
+      the value the author meant. Use the suggested key, or remove it; `descgen schema` lists the keys.""",
+    ),
+    C(
+        "SPEC002",
+        "missing-key",
+        "error",
+        "spec",
+        "A required key is missing.",
+        """Without it the element cannot be built (a joint needs parent, child and type). Add the key;
+      the hint names it.""",
+    ),
+    C(
+        "SPEC003",
+        "wrong-value-type",
+        "error",
+        "spec",
+        "A value has the wrong type or is not one of the allowed "
+        "choices (e.g. a joint type, a source that is not text, a spec that is not a mapping).",
+        """A value of the wrong shape cannot mean what the author intended. Write one of the allowed
+      values; `descgen schema` gives the form of every field.""",
+    ),
+    C(
+        "SPEC004",
+        "ambiguous-shape",
+        "error",
+        "spec",
+        "A shape or material is over- or under-specified "
+        "(both radius and diameter, not exactly one geometry, a material without rgba or texture).",
+        """Two values for one thing can disagree, and none leaves it undefined. Keep exactly the one
+      you measured.""",
+    ),
+    C(
+        "SPEC005",
+        "duplicate-key",
+        "error",
+        "spec",
+        "A mapping holds the same key twice.",
+        """YAML keeps the last one silently, so the first value (often the measured one) would be lost
+      without a word. Remove or rename one of them.""",
+    ),
+    C(
+        "SPEC010",
+        "value-without-source",
+        "error",
+        "spec",
+        "With require_sources: true, a measured value has no source on itself or on an element that contains it.",
+        """A value that cites no measurement cannot be reviewed or re-checked. Add source: <row ID> to
+      the value or its element, or set require_sources: false.""",
+    ),
+    C(
+        "SPEC020",
+        "control-character",
+        "error",
+        "spec",
+        "A spec text holds a control character.",
+        """XML (URDF, SRDF, package.xml) cannot hold control characters, and printed ones can rewrite a
+      terminal or forge output lines (docs/security.md). Remove it.""",
+    ),
+    C(
+        "SPEC021",
+        "line-break-in-one-line-value",
+        "error",
+        "spec",
+        "A value that is written as one line (an XML attribute, a name) contains a line break or tab.",
+        """An XML attribute reads a line break back as a space, so the value would not round-trip, and
+      a line break in a one-line output can inject text. Write it on one line.""",
+    ),
+    C(
+        "SPEC022",
+        "part-named-like-xacro-tag",
+        "error",
+        "spec",
+        "A part is named like a Xacro directive (property, include, macro, ...).",
+        """The part's macro would be called as <xacro:NAME>, which Xacro reads as its own directive, so
+      the generated Xacro would not call the part. Rename the part (e.g. NAME_part).""",
+    ),
+    C(
+        "SPEC023",
+        "no-links",
+        "error",
+        "spec",
+        "The spec has no links.",
+        """A URDF needs at least one <link>; generate would write a file urdfdom refuses. Add the root
+      link.""",
+    ),
+    C(
+        "SPEC024",
+        "duplicate-semantic-name",
+        "error",
+        "spec",
+        "A name is declared twice in one semantic section (groups, group states, end effectors, ...).",
+        """The SRDF keeps one element per name, so MoveIt would see only one of the two. Remove or rename
+      the second.""",
+    ),
+    C(
+        "SPEC025",
+        "package-field-refused",
+        "error",
+        "spec",
+        "A package email, version, maintainer or license that catkin_pkg refuses.",
+        """colcon and rosdep parse package.xml with catkin_pkg; a value it refuses breaks the build of
+      the generated package. Write a valid email, a MAJOR.MINOR.PATCH version and a non-empty name
+      and license.""",
+    ),
+    C(
+        "SPEC050",
+        "invalid-name",
+        "error",
+        "spec",
+        "A name in the spec does not match the pattern its field requires (e.g. an identifier).",
+        """Link, joint, frame, controller and package names reach URDF, tf, ros2_control and file names;
+      ROS tools refuse or misread names with spaces, dashes or leading digits. Until issue 10 this
+      was reported as NAME001, which is the duplicate-link-name rule. Rename it as the hint says.""",
+    ),
+    C(
+        "UNIT001",
+        "missing-unit",
+        "error",
+        "spec",
+        "A quantity is a bare number (or not a quantity at all) where a value with a unit is expected.",
+        """A bare 300 could be millimetres or metres; reading it in the wrong unit is off by 1000 and
+      nothing downstream could tell. Write the unit it was measured in; the hint suggests one that
+      fits the field's kind and the number's size. Exactly 0 needs no unit.""",
+    ),
+    C(
+        "UNIT002",
+        "unreadable-quantity",
+        "error",
+        "spec",
+        "Quantity text that pint cannot read, is empty, holds a comma, or is not finite.",
+        """pint would misread some text ("1,5 m" is 15 m), and a NaN or infinite value poisons every
+      computation. Write a number and a unit, e.g. "300 mm", with a decimal point.""",
+    ),
+    C(
+        "UNIT003",
+        "wrong-kind-of-quantity",
+        "error",
+        "spec",
+        "A quantity of the wrong kind for its field "
+        "(a mass where a length belongs, an angle unit where none is allowed, an energy for a torque).",
+        """Converting it would produce a number in the wrong SI unit. Write a quantity of the field's
+      kind; the hint gives an example.""",
+    ),
+    C(
+        "UNIT004",
+        "implausible-value",
+        "error",
+        "spec",
+        "A value outside the plausible range for its role (offset, size, mass, joint travel, ...).",
+        """The ranges are wide on purpose: they catch values a thousand times off (millimetres typed as
+      metres, grams as kilograms), not design choices. Fix the unit, or widen plausibility.<role> in
+      the spec if the value is right.""",
+    ),
+    C(
+        "UNIT020",
+        "quantity-too-complex",
+        "error",
+        "spec",
+        "Quantity text that is too long, has too many "
+        "digits, or raises to a power pint would need unbounded time to evaluate.",
+        """pint evaluates quantity text as arithmetic, so "9**9**9 kg" would hang; such text is refused
+      before pint sees it (docs/security.md). Write a plain number and unit.""",
+    ),
+    C(
+        "INER010",
+        "inertia-not-derivable",
+        "error",
+        "spec",
+        "inertial from: visual/collision, but the link has no such geometry, or it is a mesh.",
+        """descgen derives a tensor only from a box, cylinder or sphere; without one the link would get
+      no tensor. Add a primitive, or give the inertia explicitly (e.g. from CAD).""",
+    ),
+    C(
+        "SRDF010",
+        "group-state-unknown-pose",
+        "error",
+        "spec",
+        "A semantic group state names a known pose that the spec does not define.",
+        """The SRDF group state is written from the known pose's joint values; with no such pose there
+      is nothing to write. Name one of the known poses.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- third-party files
+register(
+    C(
+        "READ001",
+        "description-unreadable",
+        "error",
+        "read",
+        "A description file is missing, unreadable, or not well-formed XML.",
+        """Nothing in a file that does not parse can be audited. Check the path, or fix the XML at the
+      given position.""",
+    ),
+    C(
+        "READ002",
+        "xml-doctype",
+        "error",
+        "read",
+        "An XML description declares a DTD (<!DOCTYPE ...>).",
+        """Entities in a DTD can expand exponentially or read local files (XXE); URDF and SRDF need no
+      DTD, so it is refused. Remove the declaration.""",
+    ),
+    C(
+        "READ003",
+        "not-a-urdf",
+        "error",
+        "read",
+        "The XML root element is not <robot>.",
+        """The file is probably not a URDF (a launch file, an SDF). Name the robot's URDF or Xacro.""",
+    ),
+    C(
+        "READ004",
+        "xacro-failed",
+        "error",
+        "read",
+        "xacro could not expand the file.",
+        """A Xacro that does not expand gives no robot to audit; usually an argument or a package path
+      is missing. Pass --xacro-arg NAME:=VALUE and --package-path DIR.""",
+    ),
+    C(
+        "READ005",
+        "bad-xacro-arg-option",
+        "error",
+        "read",
+        "A --xacro-arg option is not NAME:=VALUE.",
+        """xacro's argument syntax is name:=value; anything else would be silently ignored. Write e.g.
+      --xacro-arg use_gripper:=true.""",
+    ),
+    C(
+        "READ010",
+        "urdf-value-malformed",
+        "error",
+        "read",
+        "A URDF attribute or element is malformed "
+        "(wrong count of numbers, not numbers, an empty <geometry>, a missing required attribute).",
+        """urdfdom refuses or misreads such values, so the robot would not load in ROS. Write the value
+      as the URDF specification requires; the message names the element.""",
+    ),
+    C(
+        "READ011",
+        "srdf-value-not-one-number",
+        "varies",
+        "read",
+        "An SRDF group-state joint value is not one number (a warning for multi-DOF values, an error otherwise).",
+        """Group states of 1-DOF joints are one number; descgen cannot check other values against the
+      URDF limits. Write one number per 1-DOF joint.""",
+    ),
+    C(
+        "READ012",
+        "robot-without-name",
+        "error",
+        "read",
+        "<robot> has no name attribute.",
+        """urdfdom refuses a robot without a name. Add name="..." to <robot>.""",
+    ),
+    C(
+        "READ013",
+        "robot-without-links",
+        "error",
+        "read",
+        "The robot has no links.",
+        """urdfdom refuses an empty robot; this is usually the wrong file or a Xacro whose arguments
+      switched everything off.""",
+    ),
+    C(
+        "READ020",
+        "controllers-not-mapping",
+        "error",
+        "read",
+        "A controllers YAML file is not a mapping.",
+        """controller_manager reads a mapping of node names to ros__parameters; anything else configures
+      nothing. Check that this is the controllers file.""",
+    ),
+    C(
+        "READ030",
+        "xacro-code-refused",
+        "error",
+        "read",
+        "An audited Xacro expression uses code outside the restricted evaluator's allow-list.",
+        """xacro evaluates ${} and $(eval) as Python, so an audited file could run code. descgen's
+      evaluator allows arithmetic, math and properties only (docs/security.md). If you trust the file,
+      pass --trust-xacro.""",
+    ),
+    C(
+        "READ031",
+        "xacro-file-outside-package",
+        "error",
+        "read",
+        "An audited Xacro includes or loads a file "
+        "outside its package and the --package-path folders, or one that is not a regular file.",
+        """Reading any file would let a description exfiltrate secrets into findings. Pass the package's
+      folder with --package-path, or move the file into the package.""",
+    ),
+    C(
+        "READ032",
+        "xacro-environment-refused",
+        "error",
+        "read",
+        "An audited Xacro reads an environment variable outside the allow-list, or $(cwd).",
+        """The environment holds secrets (tokens, paths); only ROS_DISTRO, ROS_VERSION and
+      ROS_PYTHON_VERSION are readable. Pass the value as --xacro-arg instead.""",
+    ),
+    C(
+        "READ033",
+        "xacro-limit-exceeded",
+        "error",
+        "read",
+        "An audited Xacro exceeds a bound (number size, string length, loop, macro calls, evaluation steps, time).",
+        """Unbounded expansion would hang or exhaust memory; the bounds are far beyond any real robot.
+      Simplify the expression, or pass --trust-xacro for a file you trust.""",
+    ),
+    C(
+        "READ040",
+        "description-not-regular-file",
+        "error",
+        "read",
+        "A named description is a FIFO, device, socket or folder.",
+        """Reading it could block forever or never end, so it is refused before it is opened. Name a
+      regular file.""",
+    ),
+    C(
+        "READ041",
+        "description-too-large",
+        "error",
+        "read",
+        "A description file is larger than the limit (64 MiB).",
+        """Real descriptions are a few megabytes at most; a larger file is the wrong file and would
+      exhaust memory. Check the path.""",
+    ),
+    C(
+        "READ042",
+        "non-finite-number",
+        "error",
+        "read",
+        "A URDF, SRDF or controllers value is nan, inf or overflows (1e999).",
+        """A non-finite number poisons kinematics, inertia and limits; the value is treated as missing.
+      Write the measured value as a plain decimal number.""",
+    ),
+    C(
+        "READ043",
+        "controllers-shape",
+        "error",
+        "read",
+        "A controllers YAML has a list or a scalar where a mapping belongs.",
+        """ros2_control reads parameters from mappings; the wrong shape configures nothing or crashes
+      the node. Write key: value lines indented below the key.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- generate / check
+register(
+    C(
+        "GEN001",
+        "xacro-proof-failed",
+        "error",
+        "generate",
+        "The generated Xacro does not expand, does not parse, or expands to a robot different from the generated URDF.",
+        """The Xacro and the URDF must describe the same robot (check 1 of DESIGN.md); a difference means
+      a template is wrong. Fix the template that changed (or the --templates override).""",
+    ),
+    C(
+        "GEN002",
+        "package-xml-invalid",
+        "error",
+        "generate",
+        "The generated package.xml is invalid or not format 3.",
+        """colcon cannot build a package with an invalid manifest. Check the spec's package: section or
+      the package.xml template.""",
+    ),
+    C(
+        "GEN003",
+        "controllers-proof-failed",
+        "error",
+        "generate",
+        "The generated controllers YAML does not load, has a non-integer update rate, or names a joint the URDF lacks.",
+        """controller_manager would refuse the file or the controller would fail to configure. Fix the
+      joint names in the spec, or the controllers template.""",
+    ),
+    C(
+        "GEN004",
+        "edited-by-hand",
+        "error",
+        "generate",
+        "A generated file was edited by hand (its content no longer matches its header hash).",
+        """Regenerating would destroy the edit, so it is not overwritten. Move the change into the spec
+      or a template, or pass --force to discard it.""",
+    ),
+    C(
+        "GEN005",
+        "generated-file-stale",
+        "error",
+        "generate",
+        "A committed generated file is stale: the spec, the templates or descgen changed since it was written.",
+        """What is committed no longer matches its source, so reviewers read the wrong files. Run
+      descgen generate and commit the result.""",
+    ),
+    C(
+        "GEN006",
+        "generated-file-missing",
+        "error",
+        "generate",
+        "A file descgen generates is missing on disk.",
+        """The package is incomplete. Run descgen generate.""",
+    ),
+    C(
+        "GEN007",
+        "file-no-longer-generated",
+        "error",
+        "generate",
+        "A file in the package is no longer generated.",
+        """A leftover file is shipped and reviewed as if it were current. Run descgen generate, which
+      removes it.""",
+    ),
+    C(
+        "GEN010",
+        "templates-not-folder",
+        "error",
+        "generate",
+        "--templates names something that is not a folder.",
+        """Template overrides are a folder of jinja2 files. Name that folder.""",
+    ),
+    C(
+        "GEN020",
+        "urdfdom-missing",
+        "varies",
+        "generate",
+        "check_urdf (urdfdom) is not installed, so the URDF "
+        "was not checked by urdfdom (an error when DESCGEN_REQUIRE_TOOLS=1, else info).",
+        """urdfdom is what ROS loads URDFs with; without it one proof is missing. Install Debian's
+      liburdfdom-tools.""",
+    ),
+    C(
+        "GEN021",
+        "urdfdom-rejected",
+        "error",
+        "generate",
+        "check_urdf rejected the generated URDF.",
+        """robot_state_publisher and every ROS tool would refuse the file. The URDF template or the
+      model is broken; the message quotes urdfdom.""",
+    ),
+    C(
+        "GEN030",
+        "urdf-readback-differs",
+        "error",
+        "generate",
+        "The URDF read back by yourdfpy differs from the model (or yourdfpy cannot read it).",
+        """An independent parser must read what descgen meant (check 2); a difference means the template
+      writes a field wrong or the file was edited.""",
+    ),
+    C(
+        "GEN031",
+        "srdf-readback-differs",
+        "error",
+        "generate",
+        "The generated SRDF, read back, differs from the spec's semantics (or does not parse).",
+        """MoveIt would plan with groups or states other than those specified. Fix the SRDF template.""",
+    ),
+    C(
+        "GEN032",
+        "ros2-control-readback-differs",
+        "error",
+        "generate",
+        "The generated <ros2_control> block, read back, differs from the spec.",
+        """The hardware would export other interfaces than specified. Fix the ros2_control template.""",
+    ),
+    C(
+        "GEN033",
+        "controllers-readback-differs",
+        "error",
+        "generate",
+        "The generated controllers YAML, read back, differs from the spec.",
+        """controller_manager would load other controllers or parameters than specified. Fix the
+      controllers template.""",
+    ),
+    C(
+        "GEN040",
+        "symlink-in-package",
+        "error",
+        "generate",
+        "A symbolic link inside the package folder.",
+        """Following it could write outside the output root; it is refused, never followed
+      (docs/security.md). Replace the link with the file.""",
+    ),
+    C(
+        "GEN041",
+        "package-folder-unsafe",
+        "error",
+        "generate",
+        "The package folder is a symbolic link, or exists but is not a folder.",
+        """generate swaps the package folder as a whole; a link or file there could redirect the write.
+      Move it away.""",
+    ),
+    C(
+        "GEN042",
+        "output-root-unsafe",
+        "error",
+        "generate",
+        "The output root is a symbolic link or not a folder.",
+        """Writes must stay inside the output root the user named. Name a folder with --out, or replace
+      the link with a folder.""",
+    ),
+    C(
+        "GEN043",
+        "special-file-in-package",
+        "error",
+        "generate",
+        "A FIFO, socket or device inside the package folder.",
+        """Reading or replacing it could block or touch a device. Remove it from the package folder.""",
+    ),
+    C(
+        "GEN044",
+        "output-root-locked",
+        "error",
+        "generate",
+        "Another descgen run holds the lock on the output root.",
+        """Two runs writing one package would mix their files. Wait for the other run, then run again.""",
+    ),
+    C(
+        "GEN045",
+        "package-write-failed",
+        "error",
+        "generate",
+        "The package could not be written (disk full, read-only --out, ...).",
+        """Writes are all or nothing, so the previous package is unchanged. Check free space and
+      permissions of the output folder.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- descgen control
+register(
+    C(
+        "CTRL011",
+        "tracking-error",
+        "error",
+        "control",
+        "A joint's measured state did not follow the command within its tolerance.",
+        """A joint that does not track its command is reversed, offset or not moving, and a controller
+      built on it would fight the hardware. Check the joint's direction, encoder offset and that it
+      moves.""",
+    ),
+    C(
+        "CTRL012",
+        "command-rejected-by-limits",
+        "error",
+        "control",
+        "The trajectory commanded values beyond the joint limits, which the hardware rejected.",
+        """A trajectory that hits the limits does not run as planned. Keep the trajectory inside the
+      joint limits.""",
+    ),
+    C(
+        "CTRL013",
+        "controller-never-active",
+        "error",
+        "control",
+        "A controller never became active in the ros2_control model.",
+        """A controller that fails to configure or claim its interfaces leaves the joints uncommanded.
+      See lifecycle.md in the evidence for the failed transition or claim.""",
+    ),
+    C(
+        "CTRL014",
+        "mock-hardware-echo",
+        "info",
+        "control",
+        "The measured state is the mock hardware echoing the command.",
+        """mock_components/GenericSystem reports what it was told, so the run proves the wiring, not the
+      motion. Use --plant sim or real hardware to verify motion.""",
+    ),
+    C(
+        "CTRL020",
+        "trajectory-malformed",
+        "error",
+        "control",
+        "The trajectory file is malformed (not a mapping, unknown keys, positions of the wrong length or unit).",
+        """A trajectory that cannot be read cannot be run. Fix the trajectory at the given line.""",
+    ),
+    C(
+        "CTRL021",
+        "package-without-control",
+        "error",
+        "control",
+        "The generated package has no controllers file or no <ros2_control> block.",
+        """control runs the generated files; without them there is nothing to run. Run descgen generate
+      first (and point --package at its output).""",
+    ),
+    C(
+        "CTRL022",
+        "trajectory-controller-unknown",
+        "error",
+        "control",
+        "No joint_trajectory_controller of the trajectory's name in the controllers file.",
+        """The trajectory would be sent to no one. Name the arm's controller.""",
+    ),
+    C(
+        "CTRL030",
+        "trajectory-empty",
+        "error",
+        "control",
+        "The trajectory names no joints or has no points.",
+        """Nothing would run, so the run would prove nothing. Give joints: and at least one point.""",
+    ),
+    C(
+        "CTRL031",
+        "trajectory-time-not-increasing",
+        "error",
+        "control",
+        "A trajectory point's time_from_start is not after the previous point's.",
+        """joint_trajectory_controller rejects trajectories whose times do not increase. List points in
+      increasing time.""",
+    ),
+    C(
+        "CTRL032",
+        "bad-fault-option",
+        "error",
+        "control",
+        "A --plant-fault option is not JOINT:=KIND with a known joint and fault kind.",
+        """An unknown joint or fault kind would be silently ignored, and the run would not test what was
+      asked. Write JOINT:=KIND with a kind from the list in the hint.""",
+    ),
+    C(
+        "CTRL033",
+        "trajectory-joint-not-commanded",
+        "error",
+        "control",
+        "The trajectory names joints that its controller does not command.",
+        """The controller would reject the trajectory. Use the controller's joints.""",
+    ),
+    C(
+        "CTRL034",
+        "evidence-folder-unwritable",
+        "error",
+        "control",
+        "The evidence folder cannot be created.",
+        """The run's evidence would be lost. Choose another --out.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- recordings
+register(
+    C(
+        "BAG001",
+        "recording-unreadable",
+        "error",
+        "recording",
+        "The rosbag2 recording cannot be read.",
+        """A corrupt recording gives no lookups to check. Give a rosbag2 folder (metadata.yaml with
+      .mcap or .db3 files).""",
+    ),
+    C(
+        "BAG002",
+        "topic-not-recorded",
+        "error",
+        "recording",
+        "A --topic is not in the recording.",
+        """Nothing can be looked up for a topic that was not recorded. List the topics with
+      `ros2 bag info`.""",
+    ),
+    C(
+        "BAG003",
+        "recording-exists",
+        "error",
+        "recording",
+        "The output recording folder already exists.",
+        """A recording is written to a new folder so that an existing one is never overwritten. Choose
+      another --out.""",
+    ),
+    C(
+        "BAG010",
+        "nothing-to-look-up",
+        "error",
+        "recording",
+        "The recording has no sensor messages with a header, so tf-audit made no lookup.",
+        """An audit that looked nothing up would pass without proving anything. Name a recorded sensor
+      topic with --topic.""",
+    ),
+    C(
+        "BAG011",
+        "recording-unwritable",
+        "error",
+        "recording",
+        "The recording cannot be written there.",
+        """The parent folder is missing or not writable. Choose another --out.""",
+    ),
+    C(
+        "BAG012",
+        "target-frame-unknown",
+        "error",
+        "recording",
+        "The --target frame appears nowhere in the recording.",
+        """Every lookup would fail for the same reason, hiding real problems. Name a frame of the
+      transform tree, e.g. odom or base_link.""",
+    ),
+    C(
+        "BAG013",
+        "topic-without-header",
+        "error",
+        "recording",
+        "A --topic carries messages with no header.",
+        """Without a header stamp and frame there is nothing to look up. Name a sensor topic whose
+      messages have a std_msgs/Header.""",
+    ),
+    C(
+        "BAG014",
+        "not-a-recording",
+        "error",
+        "recording",
+        "The path is not a rosbag2 folder (missing, a file, no metadata.yaml, or metadata too large).",
+        """Only rosbag2 folders can be read. Give the recording's folder.""",
+    ),
+    C(
+        "UNIT021",
+        "option-time-out-of-range",
+        "error",
+        "command",
+        "A duration or wait option is outside its allowed range.",
+        """Absurd durations would run for hours or prove nothing; option values are bounded like spec
+      values (docs/security.md). Give a time in the range the message states.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- command line
+register(
+    C(
+        "RULE001",
+        "unknown-code",
+        "error",
+        "command",
+        "`descgen rules CODE` names a code that is not in the catalogue.",
+        """Every code descgen prints is in the catalogue, so an unknown one is a typo. Run descgen rules
+      for the list.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- added with issue 10
+register(
+    C(
+        "CTRL048",
+        "bad-calibrated-parameter",
+        "error",
+        "spec",
+        "A controller's calibrated: names a parameter that cannot be calibrated for its type, or one "
+        "that is also in params.",
+        """calibrated: holds measured values (wheel_separation, wheel_radius of DiffDriveController)
+      that are compared with what the URDF implies and written to the controllers file; any other key
+      would be silently unused, and a key in both places has two values. Keep only calibrated.<key>.""",
+    ),
+)
