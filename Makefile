@@ -23,11 +23,13 @@ demo: setup
 
 lint: setup
 	$(BIN)/ruff check descgen tests benchmarks
-	$(BIN)/ruff format --check descgen
+	$(BIN)/ruff format --check descgen tests benchmarks
 	$(BIN)/mypy descgen
 
+# every test, slow and end-to-end ones included, on every core (pytest-xdist); tests write
+# only to their tmp_path, so workers share nothing but the read-only repository
 test: lint
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q -n auto
 
 bench: setup
 	@for b in benchmarks/*.py; do echo "== $$b"; $(PY) $$b; done

@@ -36,16 +36,20 @@ def main() -> None:
     for _, urdf, srdf in corpus:
         audit(urdf, Options(srdf=srdf, package_paths=(root,) if root else ()))
     t_audit = time.perf_counter() - t0
-    print(f"descgen audit, {len(corpus)} corpus URDFs (+{sum(1 for c in corpus if c[2])} SRDFs), in process: "
-          f"{t_audit:.2f} s ({t_audit / len(corpus) * 1000:.0f} ms per file)")
+    print(
+        f"descgen audit, {len(corpus)} corpus URDFs (+{sum(1 for c in corpus if c[2])} SRDFs), in process: "
+        f"{t_audit:.2f} s ({t_audit / len(corpus) * 1000:.0f} ms per file)"
+    )
     tool = shutil.which("check_urdf")
     if tool:
         t0 = time.perf_counter()
         for _, urdf, _ in corpus:
             subprocess.run([tool, str(urdf)], capture_output=True)
         t_check = time.perf_counter() - t0
-        print(f"check_urdf, same files, one process each:             {t_check:.2f} s "
-              f"({t_check / len(corpus) * 1000:.0f} ms per file); ratio audit/check_urdf {t_audit / t_check:.2f}x")
+        print(
+            f"check_urdf, same files, one process each:             {t_check:.2f} s "
+            f"({t_check / len(corpus) * 1000:.0f} ms per file); ratio audit/check_urdf {t_audit / t_check:.2f}x"
+        )
     else:
         print("check_urdf not installed: no anchor")
     cli = shutil.which("descgen", path=str(Path(sys.executable).parent))
@@ -62,8 +66,10 @@ def main() -> None:
         model, found = read_urdf_text(urdf_text, "chain1000.urdf")
         findings = run(model)
         times.append(time.perf_counter() - t0)
-    print(f"synthetic 1000-link chain: read + every rule, median of 5: {sorted(times)[2] * 1000:.0f} ms "
-          f"({len(findings) + len(found)} findings)")
+    print(
+        f"synthetic 1000-link chain: read + every rule, median of 5: {sorted(times)[2] * 1000:.0f} ms "
+        f"({len(findings) + len(found)} findings)"
+    )
 
 
 if __name__ == "__main__":

@@ -10,8 +10,9 @@ import time
 from pathlib import Path
 
 from descgen.control.manager import Point
-from descgen.control.run import Trajectory, run
+from descgen.control.run import run
 from descgen.control.system import Plant
+from descgen.control.trajectory import Trajectory
 from descgen.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,8 +29,10 @@ def main() -> None:
         out = run(package, robot, trajectory, 60.0, Plant(plant))
         elapsed = time.perf_counter() - t0
         iterations = round(60.0 * out.cm.update_rate)
-        print(f"{plant:<5} plant: {iterations} loop iterations (60 s at {out.cm.update_rate:g} Hz) in {elapsed:.2f} s: "
-              f"{iterations / elapsed:.0f} iterations/s, {60.0 / elapsed:.0f}x real time")
+        print(
+            f"{plant:<5} plant: {iterations} loop iterations (60 s at {out.cm.update_rate:g} Hz) in {elapsed:.2f} s: "
+            f"{iterations / elapsed:.0f} iterations/s, {60.0 / elapsed:.0f}x real time"
+        )
 
 
 if __name__ == "__main__":

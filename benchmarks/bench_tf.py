@@ -44,8 +44,10 @@ def workload(frames: int = 10, samples: int = 100, lookups: int = 20000) -> dict
             stamp = 1_000_000_000 + k * 50_000_000
             sets.append((f"f{i - 1}", f"f{i}", stamp, [rng.random(), rng.random(), rng.random()], [0.0, 0.0, 0.0, 1.0]))
     span = (samples - 1) * 50_000_000
-    qs = [(f"f{rng.randrange(frames)}", f"f{rng.randrange(frames)}", 1_000_000_000 + rng.randrange(span))
-          for _ in range(lookups)]
+    qs = [
+        (f"f{rng.randrange(frames)}", f"f{rng.randrange(frames)}", 1_000_000_000 + rng.randrange(span))
+        for _ in range(lookups)
+    ]
     qs = [q for q in qs if q[0] != q[1]]
     return {"sets": sets, "lookups": qs}
 
@@ -86,8 +88,10 @@ def main() -> None:
         t_audit = time.perf_counter() - t0
         size = sum(p.stat().st_size for p in bag.iterdir()) / 1e6
         print(f"10-minute recording: {total} messages ({size:.0f} MB MCAP), written in {t_write:.1f} s")
-        print(f"  tf-audit: {t_audit:.1f} s for {total} messages ({total / t_audit:.0f} messages/s, "
-              f"{rep.lookups / t_audit:.0f} camera lookups/s, {600 / t_audit:.0f}x real time)")
+        print(
+            f"  tf-audit: {t_audit:.1f} s for {total} messages ({total / t_audit:.0f} messages/s, "
+            f"{rep.lookups / t_audit:.0f} camera lookups/s, {600 / t_audit:.0f}x real time)"
+        )
         shutil.rmtree(bag, ignore_errors=True)
 
 

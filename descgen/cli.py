@@ -11,9 +11,14 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, NoReturn
 
-from . import __version__, report
-from .findings import Finding, InputError, Where, summary
+from . import __version__, cli_format, report
+from . import cli_types as types
+from .findings import Finding, InputError, summary
+
+if TYPE_CHECKING:
+    from .audit.inputs import Options
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
 
@@ -28,6 +33,7 @@ def exit_code(findings: Sequence[Finding], input_error: bool = False, strict: bo
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from .spec import load_spec
+    from .spec.files import expand_specs
 
     all_findings: list[Finding] = []
     failed = False
@@ -41,12 +47,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         all_findings.extend(loaded.findings)
         if args.format == "text":
             sys.stderr.write(report.text(loaded.findings))
-            r = loaded.robot
-            print(
-                f"{report.printable(path)}: valid: robot '{report.printable(r.name)}', {len(r.links)} links, "
-                f"{len(r.joints)} joints, "
-                f"{len(r.known_poses)} known poses"
-            )
+            print(cli_format.validated(path, loaded.robot))
     if args.format == "json":
         sys.stdout.write(report.as_json(all_findings))
     elif failed:
@@ -54,58 +55,13 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     return EXIT_INPUT if failed else EXIT_OK
 
 
-def expand_specs(paths: Sequence[str]) -> list[str]:
-    """Spec files, with a folder standing for the *.yaml files in it."""
-    out: list[str] = []
-    for p in paths:
-        path = Path(p)
-        if path.is_dir():
-            found = sorted(str(x) for x in (*path.glob("*.yaml"), *path.glob("*.yml")))
-            if not found:
-                raise InputError(
-                    [
-                        Finding(
-                            "YAML002",
-                            "error",
-                            f"{p} holds no .yaml spec",
-                            "name a spec file or a folder of specs",
-                            "file",
-                            Where(p),
-                        )
-                    ]
-                )
-            out += found
-        else:
-            out.append(p)
-    return out
-
-
-def _out_paths(args: argparse.Namespace) -> tuple[Path | None, Path | None]:
-    out = Path(args.out) if args.out else None
-    templates = Path(args.templates) if args.templates else None
-    if templates is not None and not templates.is_dir():
-        raise InputError(
-            [
-                Finding(
-                    "GEN010",
-                    "error",
-                    f"--templates {templates} is not a folder",
-                    "name a folder of template overrides",
-                    "option",
-                    Where(str(templates)),
-                )
-            ]
-        )
-    return out, templates
-
-
 def _cmd_generate(args: argparse.Namespace) -> int:
     from .generate import generate
+    from .spec.files import expand_specs
 
-    out, templates = _out_paths(args)
     worst = EXIT_OK
     for spec in expand_specs(args.spec):
-        outcome = generate(Path(spec), out, templates, force=args.force)
+        outcome = generate(Path(spec), args.out, args.templates, force=args.force)
         sys.stderr.write(report.text(outcome.findings))
         if outcome.failed:
             print(f"{spec}: nothing written: a check failed", file=sys.stderr)
@@ -122,11 +78,11 @@ def _cmd_generate(args: argparse.Namespace) -> int:
 
 def _cmd_check(args: argparse.Namespace) -> int:
     from .generate import check
+    from .spec.files import expand_specs
 
-    out, templates = _out_paths(args)
     worst = EXIT_OK
     for spec in expand_specs(args.spec):
-        outcome = check(Path(spec), out, templates)
+        outcome = check(Path(spec), args.out, args.templates)
         if outcome.diff:
             sys.stdout.write(outcome.diff)
         sys.stderr.write(report.text(outcome.findings))
@@ -145,77 +101,30 @@ def _cmd_poses(args: argparse.Namespace) -> int:
     rows = evaluate(loaded.robot)
     found = findings(loaded.robot, rows)
     if args.format == "json":
-        doc = [
-            {
-                "pose": r.pose.name,
-                "frame": r.measurement.frame,
-                "relative_to": r.relative_to,
-                "measured_m": list(r.measurement.xyz),
-                "model_m": None if r.model is None else list(r.model),
-                "error_m": None if r.error is None else list(r.error),
-                "worst_axis_error_m": None if r.error is None else r.worst,
-                "tolerance_m": r.measurement.tolerance,
-                "ok": r.ok,
-                "source": r.measurement.source,
-            }
-            for r in rows
-        ]
-        sys.stdout.write(report.as_json(found, poses=doc))
+        sys.stdout.write(report.as_json(found, poses=cli_format.poses_json(rows)))
     else:
-        print(f"{'pose':<16} {'frame':<22} {'measured (mm)':<24} {'model (mm)':<24} {'worst':>7} {'tol':>5}  verdict")
-        for r in rows:
-
-            def mm(v: object) -> str:
-                return "n/a" if v is None else ", ".join(f"{c * 1000:.1f}" for c in v)  # type: ignore[attr-defined]
-
-            worst = "n/a" if r.error is None else f"{r.worst * 1000:.2f}"
-            print(
-                f"{report.printable(r.pose.name):<16} {report.printable(r.measurement.frame):<22} "
-                f"{mm(r.measurement.xyz):<24} {mm(r.model):<24} "
-                f"{worst:>7} {r.measurement.tolerance * 1000:>5g}  {'pass' if r.ok else 'FAIL'}"
-            )
+        sys.stdout.write(cli_format.poses_table(rows))
         sys.stderr.write(report.text(found))
     return exit_code(found)
 
 
-def _audit_options(args: argparse.Namespace) -> object:
+def _description_options(args: argparse.Namespace) -> Options:
     from .audit.inputs import Options
 
-    mappings = {}
-    for item in args.xacro_arg or []:
-        name, sep, value = item.partition(":=")
-        if not sep or not name:
-            raise InputError(
-                [
-                    Finding(
-                        "READ005",
-                        "error",
-                        f"--xacro-arg '{item}' is not name:=value",
-                        "write e.g. --xacro-arg use_gripper:=true",
-                        "option",
-                        Where("<command line>"),
-                    )
-                ]
-            )
-        mappings[name] = value
     return Options(
-        Path(args.srdf) if args.srdf else None,
-        Path(args.controllers) if args.controllers else None,
-        mappings,
-        tuple(Path(p) for p in args.package_path or []),
-        args.trust_xacro,
+        args.srdf, args.controllers, dict(args.xacro_arg or []), tuple(args.package_path or []), args.trust_xacro
     )
 
 
 def _cmd_audit(args: argparse.Namespace) -> int:
     from .audit.inputs import audit
 
-    options = _audit_options(args)
+    options = _description_options(args)
     found: list[Finding] = []
     unusable = False
     for path in args.path:
         try:
-            found += audit(Path(path), options)  # type: ignore[arg-type]
+            found += audit(Path(path), options)
         except InputError as exc:
             found += exc.findings
             unusable = True
@@ -234,33 +143,12 @@ def _cmd_faults(args: argparse.Namespace) -> int:
     from .audit.inputs import load_description
     from .faults import plant_all
 
-    robot, _ = load_description(Path(args.path), _audit_options(args))  # type: ignore[arg-type]
+    robot, _ = load_description(Path(args.path), _description_options(args))
     results = plant_all(robot)
     if args.format == "json":
-        doc = {
-            "path": args.path,
-            "faults": [
-                {
-                    "fault": r.fault.name,
-                    "planted": r.planted,
-                    "applicable": r.applicable,
-                    "caught": r.caught,
-                    "by": None if r.by is None else r.by.as_dict(),
-                }
-                for r in results
-            ],
-            "caught": sum(r.caught for r in results),
-            "missed": sum(r.applicable and not r.caught for r in results),
-        }
-        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+        sys.stdout.write(json.dumps(cli_format.faults_json(args.path, results), indent=2) + "\n")
     else:
-        for r in results:
-            verdict = "caught" if r.caught else "n/a" if not r.applicable else "MISSED"
-            by = f" by {r.by.code}: {r.by.message}" if r.by else ""
-            print(f"{verdict:<7} {r.fault.name:<28} {report.printable(r.planted + by)}")
-        caught = sum(r.caught for r in results)
-        applicable = sum(r.applicable for r in results)
-        print(f"{caught} of {applicable} planted faults caught ({len(results) - applicable} not applicable)")
+        sys.stdout.write(cli_format.faults_text(results))
     return EXIT_FAILED if any(r.applicable and not r.caught for r in results) else EXIT_OK
 
 
@@ -269,127 +157,55 @@ def _cmd_frames(args: argparse.Namespace) -> int:
     from .audit.inputs import load_description
     from .frames import edges
 
-    robot, _ = load_description(Path(args.path), _audit_options(args))  # type: ignore[arg-type]
+    robot, _ = load_description(Path(args.path), _description_options(args))
     es = edges(robot)
     found = [f for f in run(robot) if f.code.startswith("FRAME")]
     if args.format == "json":
-        doc = [
-            {
-                "parent": e.parent,
-                "child": e.child,
-                "owner": e.owner,
-                "topic": e.topic,
-                "static": e.static,
-                "joint": e.joint,
-                "fed_by": e.via,
-            }
-            for e in es
-        ]
-        sys.stdout.write(report.as_json(found, frames=doc))
-        return exit_code(found)
-    children: dict[str, list[object]] = {}
-    for e in es:
-        children.setdefault(e.parent, []).append(e)
-    roots = [p for p in children if p not in {e.child for e in es}]
-
-    def show(frame: str, depth: int, seen: set[str]) -> None:
-        for e in children.get(frame, []):
-            kind = "static" if e.static else "dynamic"  # type: ignore[attr-defined]
-            line = f"{e.child}  <- {e.owner} on {e.topic} ({kind}; {e.via})"  # type: ignore[attr-defined]
-            print(f"{'  ' * depth}{report.printable(line)}")
-            if e.child not in seen:  # type: ignore[attr-defined]
-                show(e.child, depth + 1, seen | {e.child})  # type: ignore[attr-defined]
-
-    for r in roots:
-        print(report.printable(r))
-        show(r, 1, {r})
-    sys.stderr.write(report.text(found))
+        sys.stdout.write(report.as_json(found, frames=cli_format.frames_json(es)))
+    else:
+        sys.stdout.write(cli_format.frames_tree(es))
+        sys.stderr.write(report.text(found))
     return exit_code(found)
 
 
-def _seconds(text: str, what: str, low: float, high: float, bare_seconds: bool = True) -> float:
-    """An option's time in seconds, bounded; a bare number is seconds where the option was
-    documented in seconds before it took units."""
-    from . import units
-
-    try:
-        return units.duration(text, low, high, bare_seconds=bare_seconds)
-    except units.QuantityError as exc:
-        raise InputError(
-            [Finding(exc.code, "error", f"{what}: {exc.message}", exc.hint, "option", Where("<command line>"))]
-        ) from None
-
-
-def _ns(text: str, what: str) -> int:
-    from .tf.bagaudit import MAX_WAIT_S
-
-    return round(_seconds(text, what, 0.0, MAX_WAIT_S, bare_seconds=False) * 1e9)
-
-
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
-    from .tf.bagaudit import audit, shown
+    from .tf.bagaudit import audit
 
-    max_age = _ns(args.max_age, "--max-age") if args.max_age is not None else None
-    rep = audit(Path(args.bag), args.target, tuple(args.topic or ()), _ns(args.wait, "--wait"), max_age)
-    failed = rep.lookups - rep.counts["ok"]
+    rep = audit(Path(args.bag), args.target, tuple(args.topic or ()), args.wait, args.max_age)
     if args.format == "json":
         sys.stdout.write(json.dumps(rep.as_dict(), indent=2) + "\n")
     else:
-        print(
-            f"{rep.lookups} lookups into '{args.target}': {rep.counts['ok']} ok, {rep.counts['disconnected']} "
-            f"disconnected, {rep.counts['stale']} stale, {rep.counts['future']} future-dated"
-        )
-        for topic, c in sorted(rep.per_topic.items()):
-            print(f"  {shown(topic)}: " + ", ".join(f"{k} {c[k]}" for k in ("ok", "disconnected", "stale", "future")))
-        print("latency (log time - stamp): " + ", ".join(f"{k} ms: {v}" for k, v in sorted(rep.latency.items())))
-        for e in rep.examples:
-            print(
-                f"  {e['outcome']}: {shown(e['topic'])} logged {e['log_time_ns'] / 1e9:.6f} stamped "
-                f"{e['stamp_ns'] / 1e9:.6f} in '{shown(e['frame_id'])}': {shown(e['detail'], 300)}"
-            )
-    return EXIT_FAILED if failed else EXIT_OK
+        sys.stdout.write(cli_format.tf_audit_text(rep, args.target))
+    return EXIT_FAILED if rep.lookups - rep.counts["ok"] else EXIT_OK
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:
     from .spec import load_spec
-    from .tf.scenario import MAX_DURATION_S, MIN_DURATION_S, write
+    from .tf.scenario import write
 
-    duration = _seconds(args.duration, "--duration", MIN_DURATION_S, MAX_DURATION_S)
-    out = Path(args.out)
     robot = load_spec(args.spec).robot
-    counts = write(robot, out, tuple(args.fault or ()), duration, args.storage)
-    print(f"wrote {out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
+    counts = write(robot, args.out, tuple(args.fault or ()), args.duration, args.storage)
+    print(f"wrote {args.out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
     return EXIT_OK
 
 
 def _cmd_control(args: argparse.Namespace) -> int:
-    from .control.run import MAX_DURATION_S, MIN_DURATION_S, find_package, read_trajectory, run, write_evidence
+    from .control.evidence import write_evidence
+    from .control.load import find_package
+    from .control.run import run
     from .control.system import Plant, plant_faults
+    from .control.trajectory import read_trajectory
     from .spec import load_spec
 
-    spec = Path(args.spec)
-    robot = load_spec(spec).robot
-    package = find_package(spec, robot, Path(args.package) if args.package else None)
-    duration = (
-        _seconds(args.duration, "--duration", MIN_DURATION_S, MAX_DURATION_S) if args.duration is not None else None
-    )
+    robot = load_spec(args.spec).robot
+    package = find_package(Path(args.spec), robot, args.package)
     faults = plant_faults(args.plant_fault or [], args.plant, robot)
-    trajectory = read_trajectory(Path(args.trajectory), robot)
-    plant = Plant(args.plant, faults=faults, noise=0.0)
-    out = run(package, robot, trajectory, duration, plant)
-    folder = Path(args.out) if args.out else package / "evidence"
+    trajectory = read_trajectory(args.trajectory, robot)
+    out = run(package, robot, trajectory, args.duration, Plant(args.plant, faults=faults, noise=0.0))
+    folder = args.out or package / "evidence"
     written = write_evidence(out, folder, robot)
     verdict = out.verdict()
-    print(f"wrote {', '.join(written)} to {folder}")
-    for joint, err in verdict["tracking"].items():
-        tol = verdict["tolerance"][joint]
-        print(
-            f"  {joint:<22} max |desired - measured| {err:.6g} (tolerance {tol:.6g}) {'ok' if err <= tol else 'FAILED'}"
-        )
-    for e in verdict["rejected"]:
-        print(
-            f"  rejected {e['joint']}/{e['interface']} = {e['value']:.6g} beyond {e['limit']:.6g} at {e['time']:.2f} s"
-        )
+    sys.stdout.write(cli_format.control_text(written, folder, verdict))
     sys.stderr.write(report.text(out.findings()))
     return EXIT_OK if verdict["ok"] else EXIT_FAILED
 
@@ -406,20 +222,8 @@ def _cmd_rules(args: argparse.Namespace) -> int:
     from .codes import GROUPS, entries, explain
 
     if args.code:
-        entry = explain(args.code.strip().upper())
-        if entry is None:
-            raise InputError(
-                [
-                    Finding(
-                        "RULE001",
-                        "error",
-                        f"no code {report.printable(args.code, 80)} in the catalogue",
-                        "run descgen rules for the list",
-                        "option",
-                        Where("<command line>"),
-                    )
-                ]
-            )
+        entry = explain(args.code)
+        assert entry is not None  # cli_types.rule_code refused unknown codes
         print(f"{entry.code} {entry.name} ({entry.severity}; {GROUPS[entry.group]})\n{entry.doc}", end="")
         return EXIT_OK
     for e in entries():
@@ -429,14 +233,42 @@ def _cmd_rules(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+# -- bounds of the time options, looked up only when the option is given -----------------------
+
+
+def _scenario_bounds() -> tuple[float, float]:
+    from .tf.scenario import MAX_DURATION_S, MIN_DURATION_S
+
+    return MIN_DURATION_S, MAX_DURATION_S
+
+
+def _control_bounds() -> tuple[float, float]:
+    from .control.trajectory import MAX_DURATION_S, MIN_DURATION_S
+
+    return MIN_DURATION_S, MAX_DURATION_S
+
+
+def _wait_bounds() -> tuple[float, float]:
+    from .tf.bagaudit import MAX_WAIT_S
+
+    return 0.0, MAX_WAIT_S
+
+
 def description_options(p: argparse.ArgumentParser) -> None:
     """The options that say how to read a description someone else wrote."""
-    p.add_argument("--srdf", help="SRDF of the robot")
-    p.add_argument("--controllers", help="controller_manager YAML of the robot")
-    p.add_argument("--xacro-arg", action="append", metavar="NAME:=VALUE", help="argument for a Xacro (repeatable)")
+    p.add_argument("--srdf", type=types.path, help="SRDF of the robot")
+    p.add_argument("--controllers", type=types.path, help="controller_manager YAML of the robot")
+    p.add_argument(
+        "--xacro-arg",
+        action="append",
+        type=types.xacro_arg,
+        metavar="NAME:=VALUE",
+        help="argument for a Xacro (repeatable)",
+    )
     p.add_argument(
         "--package-path",
         action="append",
+        type=types.folder,
         metavar="DIR",
         help="folder holding ROS packages, for $(find) and package:// (repeatable)",
     )
@@ -454,8 +286,25 @@ def _code_groups() -> list[str]:
     return list(GROUPS)
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse, printing a bad option value that has a finding code as findings are printed.
+
+    argparse turns the :class:`~descgen.cli_types.OptionError` a ``type=`` callable raised into
+    an ``ArgumentError`` and calls :meth:`error` while handling it, so the finding is the
+    handled exception's context. Anything else (an unknown option, a bad choice, a value
+    without a code) keeps argparse's usage message. Both exit 2."""
+
+    def error(self, message: str) -> NoReturn:
+        handled = sys.exc_info()[1]
+        bad = handled.__context__ if handled is not None else None
+        if not isinstance(bad, types.OptionError):
+            super().error(message)
+        sys.stderr.write(report.text([bad.finding]))
+        self.exit(EXIT_INPUT)
+
+
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="descgen", description="Robot descriptions from measured specs, proven.")
+    p = Parser(prog="descgen", description="Robot descriptions from measured specs, proven.")
     p.add_argument("--version", action="version", version=f"descgen {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
 
@@ -466,15 +315,17 @@ def parser() -> argparse.ArgumentParser:
 
     g = sub.add_parser("generate", help="write generated/<robot>_description/ if every check passes")
     g.add_argument("spec", nargs="+")
-    g.add_argument("--out", help="output root (default: generated/ beside specs/)")
-    g.add_argument("--templates", help="folder of templates that override the defaults by file name")
+    g.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    g.add_argument(
+        "--templates", type=types.templates_folder, help="folder of templates that override the defaults by file name"
+    )
     g.add_argument("--force", action="store_true", help="overwrite files that were edited by hand")
     g.set_defaults(fn=_cmd_generate)
 
     c = sub.add_parser("check", help="regenerate in memory, compare with the files on disk, run the checks")
     c.add_argument("spec", nargs="+")
-    c.add_argument("--out", help="output root (default: generated/ beside specs/)")
-    c.add_argument("--templates", help="folder of template overrides")
+    c.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    c.add_argument("--templates", type=types.templates_folder, help="folder of template overrides")
     c.set_defaults(fn=_cmd_check)
 
     a = sub.add_parser("audit", help="audit specs, URDFs or Xacros (with an SRDF and controllers YAML)")
@@ -501,21 +352,27 @@ def parser() -> argparse.ArgumentParser:
     ta.add_argument("--target", required=True, help="frame to look every message up in (e.g. odom)")
     ta.add_argument("--topic", action="append", help="sensor topic (repeatable; default: every topic with a header)")
     ta.add_argument(
-        "--wait", default="0 ms", help="how long a consumer waits for transforms (e.g. '50 ms'; at most 1 h)"
+        "--wait",
+        default="0 ms",
+        type=types.Nanoseconds("--wait", _wait_bounds),
+        help="how long a consumer waits for transforms (e.g. '50 ms'; at most 1 h)",
     )
     ta.add_argument(
-        "--max-age", help="flag interpolation across samples farther than this (e.g. '100 ms'; at most 1 h)"
+        "--max-age",
+        type=types.Nanoseconds("--max-age", _wait_bounds),
+        help="flag interpolation across samples farther than this (e.g. '100 ms'; at most 1 h)",
     )
     ta.add_argument("--format", choices=("text", "json"), default="text")
     ta.set_defaults(fn=_cmd_tf_audit)
 
     sc = sub.add_parser("tf-scenario", help="write a short recording of the robot, optionally with planted faults")
     sc.add_argument("spec")
-    sc.add_argument("--out", required=True, help="new rosbag2 folder to write")
+    sc.add_argument("--out", required=True, type=types.path, help="new rosbag2 folder to write")
     sc.add_argument("--fault", action="append", choices=("camera-future", "odom-gap", "unknown-frame"))
     sc.add_argument(
         "--duration",
         default="10 s",
+        type=types.Duration("--duration", _scenario_bounds),
         help="length of the recording, e.g. '10 s' (a bare number is seconds; at most 10 min)",
     )
     sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
@@ -523,24 +380,27 @@ def parser() -> argparse.ArgumentParser:
 
     co = sub.add_parser("control", help="run a trajectory through a model of ros2_control (lifecycle, claims, loop)")
     co.add_argument("spec")
-    co.add_argument("--trajectory", required=True)
+    co.add_argument("--trajectory", required=True, type=types.path)
     co.add_argument(
         "--duration",
+        type=types.Duration("--duration", _control_bounds),
         help="simulated time, e.g. '8 s' (a bare number is seconds; at most 10 min; default: the trajectory plus 1 s)",
     )
     co.add_argument("--plant", choices=("mock", "sim"), default="mock")
     co.add_argument(
         "--plant-fault",
         action="append",
+        type=types.plant_fault,
         metavar="JOINT:=stuck|offset|reversed",
         help="plant a fault in a joint of the simulated plant (repeatable; needs --plant sim)",
     )
     co.add_argument(
         "--package",
+        type=types.path,
         help="the generated package, or the output root that `generate --out` wrote it under "
         "(default: generated/ beside specs/)",
     )
-    co.add_argument("--out", help="folder for the evidence (default: the package's evidence/)")
+    co.add_argument("--out", type=types.path, help="folder for the evidence (default: the package's evidence/)")
     co.set_defaults(fn=_cmd_control)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
@@ -552,14 +412,17 @@ def parser() -> argparse.ArgumentParser:
     s.set_defaults(fn=_cmd_schema)
 
     r = sub.add_parser("rules", help="list every finding code (audit rules and the rest), or explain one")
-    r.add_argument("code", nargs="?", help="a code to explain, e.g. UNIT004")
+    r.add_argument("code", nargs="?", type=types.rule_code, help="a code to explain, e.g. UNIT004")
     r.add_argument("--group", choices=_code_groups(), help="list only the codes of one group")
     r.set_defaults(fn=_cmd_rules)
     return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    try:
+        args = parser().parse_args(argv)
+    except SystemExit as exc:  # argparse: --help, --version, or a bad option value (exit 2)
+        return exc.code if isinstance(exc.code, int) else EXIT_INPUT if exc.code else EXIT_OK
     try:
         code = int(args.fn(args))
         sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit

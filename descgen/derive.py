@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import Controller, Cylinder, Interface, Joint, Robot, Sphere
+from .model import WITH_LIMITS, Controller, Cylinder, Interface, Joint, Robot, Sphere
 from .transforms import Mat, pose_matrix
 
 
@@ -98,7 +98,7 @@ def command_limits(j: Joint | None, interface: str) -> tuple[float | None, float
     if j is None or j.limit is None:
         return None, None
     lm = j.limit
-    if interface == "position" and j.type in ("revolute", "prismatic"):
+    if interface == "position" and j.type in WITH_LIMITS:
         return lm.lower, lm.upper
     if interface == "velocity" and lm.velocity is not None:
         return -abs(lm.velocity), abs(lm.velocity)

@@ -17,6 +17,8 @@ from dataclasses import dataclass, replace
 from .audit import run
 from .findings import Finding
 from .model import (
+    ONE_DOF,
+    WITH_LIMITS,
     Box,
     ControlJoint,
     Controller,
@@ -34,6 +36,8 @@ from .model import (
     Ros2Control,
     Sphere,
 )
+from .naming import mirror_name
+from .physics import dims, moving_links
 
 
 @dataclass(frozen=True)
@@ -78,14 +82,12 @@ def _swap_link(robot: Robot, old: Link, new: Link) -> Robot:
     return replace(robot, links=tuple(new if lk is old else lk for lk in robot.links))
 
 
-def _one_dof(robot: Robot, types: tuple[str, ...] = ("revolute", "prismatic")) -> list[Joint]:
+def _one_dof(robot: Robot, types: tuple[str, ...] = WITH_LIMITS) -> list[Joint]:
     return [j for j in robot.joints if j.type in types]
 
 
 def _moving_links(robot: Robot) -> list[Link]:
-    from .audit.rules.inertia import _moving_links as moving
-
-    names = moving(robot)
+    names = moving_links(robot)
     return [lk for lk in robot.links if lk.name in names]
 
 
@@ -128,8 +130,6 @@ def _scaled(g: Geometry | None, k: float) -> Geometry | None:
 
 
 def geometry_x1000(robot: Robot) -> Planted:
-    from .audit.rules.scale import dims
-
     candidates = [lk for lk in robot.links if lk.shapes()]
     if not candidates:
         return None
@@ -164,9 +164,7 @@ def _perpendicular(axis: tuple[float, float, float]) -> tuple[float, float, floa
 
 
 def wrong_axis(robot: Robot) -> Planted:
-    from .audit.rules.joints import mirror_name
-
-    moving = [j for j in robot.joints if j.type in ("revolute", "continuous", "prismatic") and j.axis]
+    moving = [j for j in robot.joints if j.type in ONE_DOF and j.axis]
     posed = {name for kp in robot.known_poses for name, v in kp.joints if v != 0}
     mirrored = [j for j in moving if (m := mirror_name(j.name)) and robot.joint(m) is not None]
     candidates = [j for j in moving if j.name in posed] + mirrored + moving
@@ -190,7 +188,7 @@ def wrong_axis(robot: Robot) -> Planted:
 
 
 def zero_axis(robot: Robot) -> Planted:
-    joints = _one_dof(robot, ("revolute", "continuous", "prismatic"))
+    joints = _one_dof(robot, ONE_DOF)
     if not joints:
         return None
     j = joints[0]
@@ -352,7 +350,7 @@ def _with_control(robot: Robot) -> Ros2Control:
 
 def controller_on_missing_joint(robot: Robot) -> Planted:
     rc = _with_control(robot)
-    joints = [j.name for j in _one_dof(robot, ("revolute", "prismatic", "continuous"))][:2]
+    joints = [j.name for j in _one_dof(robot, ONE_DOF)][:2]
     ctrl = Controller(
         "planted_controller",
         "forward_command_controller/ForwardCommandController",
@@ -403,7 +401,7 @@ def second_frame_owner(robot: Robot) -> Planted:
 
 
 def joint_without_state(robot: Robot) -> Planted:
-    movable = [j.name for j in robot.joints if j.type in ("revolute", "continuous", "prismatic")]
+    movable = [j.name for j in robot.joints if j.type in ONE_DOF]
     driven = [j.name for j in robot.joints if j.name in movable and j.mimic is None]  # a mimic follows its leader
     if not driven:
         return None
@@ -443,7 +441,7 @@ def desired_on_joint_states(robot: Robot) -> Planted:
 
 def broadcaster_on_commands(robot: Robot) -> Planted:
     rc = _with_control(robot)
-    movable = [j.name for j in robot.joints if j.type in ("revolute", "continuous", "prismatic")]
+    movable = [j.name for j in robot.joints if j.type in ONE_DOF]
     if not movable:
         return None
     joints = rc.joints or (ControlJoint(movable[0], (Interface("position"),), (Interface("position"),)),)

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 from . import mimic
 from .findings import Where
-from .model import NOWHERE, Robot
+from .model import NOWHERE, ONE_DOF, Robot
 
 RSP = "robot_state_publisher"
 
@@ -100,7 +100,7 @@ def edges(robot: Robot) -> list[Edge]:
                     j.where,
                 )
             )
-        elif j.type in ("revolute", "continuous", "prismatic"):
+        elif j.type in ONE_DOF:
             feed = joint_state_feed(robot, j.name)
             out.append(Edge(j.parent, j.child, RSP, "/tf", False, j.name, feed or "nothing", j.where))
         # floating: robot_state_publisher publishes nothing for it

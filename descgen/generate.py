@@ -490,7 +490,8 @@ def draw_frames(package_dir: Path) -> None:
 
 def check(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Outcome:
     """Regenerate in memory and compare with the files on disk; run every check."""
-    p = plan(spec, _output_root(spec, out_root), templates)
+    root = _output_root(spec, out_root)
+    p = plan(spec, root, templates)
     refuse_unsafe(p.package_dir)  # a link would let the diff print a file from elsewhere
     outcome = Outcome(findings=list(p.findings))
     diffs: list[str] = []
@@ -540,4 +541,13 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
                 )
             )
     outcome.diff = "".join(diffs)
+    outcome.findings += _stale_evidence(spec, p, root or default_out(spec))
     return outcome
+
+
+def _stale_evidence(spec: Path, p: Plan, root: Path) -> list[Finding]:
+    """The committed control evidence (written by ``descgen control``, not by generate) run
+    again from what verdict.json records, and compared like a generated file."""
+    from .control.evidence_check import check_evidence
+
+    return check_evidence(p.package_dir, p.robot, spec_display(spec, root))

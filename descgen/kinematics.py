@@ -15,7 +15,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from . import mimic
-from .model import Joint, Robot
+from .model import ROTATING, Joint, Robot
 from .transforms import Mat, axis_angle_matrix, pose_matrix
 
 
@@ -27,7 +27,7 @@ def motion(j: Joint, q: float) -> Mat:
     n = float(np.linalg.norm(axis))
     if n == 0:
         return t
-    if j.type in ("revolute", "continuous"):
+    if j.type in ROTATING:
         t[:3, :3] = axis_angle_matrix(tuple(float(c) for c in axis / n), q)
     elif j.type == "prismatic":
         t[:3, 3] = q * axis / n

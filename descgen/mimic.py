@@ -95,7 +95,7 @@ class Mimics:
 
 # analyse() per robot, kept while the robot lives: frames and rules ask per joint, and a
 # rescan per joint would be quadratic on long chains. Robots are immutable, so the entry
-# never goes stale (a robot's ``extras`` is shared by ``dataclasses.replace`` copies).
+# never goes stale (and a changed copy from ``dataclasses.replace`` is a new robot).
 _CACHE: dict[int, tuple[weakref.ref[Robot], Mimics]] = {}
 
 

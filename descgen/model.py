@@ -11,16 +11,27 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from typing import Literal
 
 from .findings import Where
 
 Vec3 = tuple[float, float, float]
 NOWHERE = Where("<unknown>")
 
+# Joint types, written out once: every part asks these rather than spelling a tuple.
 JOINT_TYPES = ("fixed", "revolute", "continuous", "prismatic", "floating", "planar")
-MOVABLE = ("revolute", "continuous", "prismatic", "floating", "planar")
-ONE_DOF = ("revolute", "continuous", "prismatic")
+MOVABLE = ("revolute", "continuous", "prismatic", "floating", "planar")  # every type but fixed
+ONE_DOF = ("revolute", "continuous", "prismatic")  # one joint value: what joint_states and poses set
+ROTATING = ("revolute", "continuous")  # the value is an angle about the axis
+WITH_LIMITS = ("revolute", "prismatic")  # <limit lower/upper> bounds the value
+WITH_AXIS = ("revolute", "continuous", "prismatic", "planar")  # <axis> means something (planar: the normal)
+NO_AXIS = ("fixed", "floating")  # <axis> is ignored: URDF readers drop it
+VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")  # an SRDF <virtual_joint>
+MULTI_DOF = ("floating", "planar")  # joints (virtual ones too) with more than one value
+
+# What audit/inputs.mesh_status found for a mesh filename.
+MeshState = Literal["ok", "missing", "escapes", "unresolved"]
 
 
 @dataclass(frozen=True)
@@ -182,7 +193,7 @@ class Joint:
     def outside_limits(self, value: float) -> bool:
         """True when a bounded joint (revolute, prismatic) is given a value beyond its limits."""
         lm = self.limit
-        if self.type not in ("revolute", "prismatic") or lm is None or lm.lower is None or lm.upper is None:
+        if self.type not in WITH_LIMITS or lm is None or lm.lower is None or lm.upper is None:
             return False
         return not lm.lower - 1e-12 <= value <= lm.upper + 1e-12
 
@@ -343,6 +354,7 @@ class Semantic:
     passive_joints: tuple[str, ...] = ()
     disabled_collisions: tuple[DisabledPair, ...] = ()
     where: Where = NOWHERE
+    robot_name: str | None = None  # the SRDF's <robot name>; None for a spec's semantic (SRDF005)
 
 
 @dataclass(frozen=True)
@@ -362,17 +374,6 @@ class KnownPose:
     frames: tuple[FrameMeasurement, ...] = ()
     source: str | None = None
     where: Where = NOWHERE
-
-
-@dataclass(frozen=True)
-class Constant:
-    """A named measured value from the spec's ``constants:`` (SI), kept for readable outputs."""
-
-    name: str
-    value: float
-    written: str
-    source: str | None = None
-    description: str | None = None
 
 
 @dataclass(frozen=True)
@@ -414,9 +415,6 @@ class Robot:
     ros2_control: Ros2Control | None = None
     semantic: Semantic | None = None
     known_poses: tuple[KnownPose, ...] = ()
-    constants: tuple[Constant, ...] = ()
-    # (subject, field path) -> constant name, e.g. ("joint:left_wheel_joint", "origin.xyz.1") -> "-half_track"
-    refs: tuple[tuple[tuple[str, str], str], ...] = ()
     description: str | None = None
     package: PackageInfo = PackageInfo()
     external_frames: tuple[ExternalFrame, ...] = ()
@@ -424,7 +422,12 @@ class Robot:
     where: Where = NOWHERE
     source_file: str | None = None
     spec_hash: str | None = None
-    extras: dict[str, object] = field(default_factory=dict, compare=False, hash=False)
+    # Plausible density (kg/m^3, low and high) from a spec's ``plausibility.density``; None:
+    # units.DEFAULT_RANGES (UNIT010). Kept as numbers so the model needs no unit parser.
+    density_range: tuple[float, float] | None = None
+    # (mesh filename, state) for every mesh of a read description (audit/inputs.mesh_status);
+    # empty when nobody resolved the files, e.g. a spec loaded for generation (GEOM003-005).
+    mesh_status: tuple[tuple[str, MeshState], ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

@@ -9,9 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import kinematics, mimic
+from . import display, kinematics, mimic
 from .findings import Finding
-from .model import FrameMeasurement, KnownPose, Robot, Vec3
+from .model import ONE_DOF, FrameMeasurement, KnownPose, Robot, Vec3
 
 EPS = 1e-9  # a measurement exactly at its tolerance passes, whatever the float rounding
 
@@ -54,7 +54,7 @@ def evaluate(robot: Robot) -> list[Row]:
 
 
 def _mm(v: Vec3) -> str:
-    return "(" + ", ".join(f"{c * 1000:.1f}" for c in v) + ") mm"
+    return f"({display.mm(v)}) mm"
 
 
 def path_joints(robot: Robot, frame: str, base: str | None) -> list[str]:
@@ -68,7 +68,7 @@ def path_joints(robot: Robot, frame: str, base: str | None) -> list[str]:
         part = f"{j.name} ({j.type}, origin {_mm(j.origin.xyz)}"
         if any(j.origin.rpy):
             part += f" rpy {tuple(round(float(np.degrees(a)), 3) for a in j.origin.rpy)} deg"
-        if j.type in ("revolute", "continuous", "prismatic") and j.axis is not None:
+        if j.type in ONE_DOF and j.axis is not None:
             part += f", axis {tuple(j.axis)}"
         rel = mimic.relation(robot, j.name)
         if rel is not None:  # a measured mimic finger that is off may be a wrong multiplier or offset

@@ -21,6 +21,20 @@ def require_tool(name: str) -> str:
     pytest.skip(f"{name} not installed")
 
 
+@pytest.fixture(scope="session")
+def pin():  # type: ignore[no-untyped-def]
+    """pinocchio, for the tests that compare with it (the others in their modules run without it);
+    skipped when absent, a failure when CI requires it. Not function-scoped: hypothesis refuses
+    those in @given tests."""
+    try:
+        import pinocchio
+    except ImportError:
+        if os.environ.get("DESCGEN_REQUIRE_TOOLS") == "1":
+            pytest.fail("pinocchio is required (DESCGEN_REQUIRE_TOOLS=1) but cannot be imported")
+        pytest.skip("pinocchio not installed")
+    return pinocchio
+
+
 @pytest.fixture
 def example_text() -> str:
     return EXAMPLE.read_text()

@@ -2,8 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
+import signal
 import subprocess
 import sys
+import threading
+from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 from descgen.findings import Finding, InputError
@@ -35,7 +41,63 @@ def errors_of(text: str, tmp_path: Path, name: str = "robot.yaml") -> list[Findi
 
 
 def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
-    """The descgen command in a subprocess, as a user runs it."""
+    """The descgen command in a subprocess, as a user runs it: for the few end-to-end tests
+    (interpreter start, ``python -m descgen``, real pipes). Everything else uses :func:`cli`."""
     return subprocess.run(
         [sys.executable, "-m", "descgen", *args], capture_output=True, text=True, cwd=cwd, timeout=300
     )
+
+
+@dataclass
+class Ran:
+    """What :func:`cli` saw: the same three fields a ``CompletedProcess`` has."""
+
+    returncode: int
+    stdout: str
+    stderr: str
+
+
+class HangError(Exception):
+    """The in-process command ran past its time limit (the subprocess timeout's stand-in)."""
+
+
+@contextlib.contextmanager
+def _time_limit(seconds: float) -> Iterator[None]:
+    """Raise :class:`HangError` after ``seconds``, so a hang fails the test instead of stalling the run.
+    Only the main thread gets signals; elsewhere (never in pytest or its xdist workers) no limit."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def expire(signum: int, frame: object) -> None:
+        raise HangError(f"descgen ran longer than {seconds:g} s")
+
+    old = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def cli(*args: str | Path, cwd: Path = ROOT, timeout: float = 300) -> Ran:
+    """``descgen ARGS`` through ``descgen.cli.main`` in this process (no 1-2 s interpreter start).
+
+    argparse's ``SystemExit`` becomes the exit code, as in a shell. Any other exception escapes
+    and fails the test, which is what a traceback in a subprocess's stderr would have meant.
+    """
+    from descgen import cli as descgen_cli
+
+    out, err = io.StringIO(), io.StringIO()
+    with (
+        contextlib.chdir(cwd),
+        contextlib.redirect_stdout(out),
+        contextlib.redirect_stderr(err),
+        _time_limit(timeout),
+    ):
+        try:
+            code = descgen_cli.main([str(a) for a in args])
+        except SystemExit as exc:  # argparse: --help (0) and usage errors (2)
+            code = exc.code if isinstance(exc.code, int) else 1 if exc.code else 0
+    return Ran(code, out.getvalue(), err.getvalue())

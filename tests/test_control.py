@@ -6,19 +6,19 @@ from __future__ import annotations
 import itertools
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from descgen.control.run import load_system, read_trajectory, run
+from descgen.control.load import load_system
+from descgen.control.run import run
 from descgen.control.system import Plant
+from descgen.control.trajectory import read_trajectory
 from descgen.generate import generate
 from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, ROOT
-from .helpers import plant
+from .helpers import cli, plant
 
 ROBOT = load_spec(EXAMPLE).robot
 PACKAGE = ROOT / "generated" / "warehouse_arm_description"
@@ -95,7 +95,8 @@ def test_plant_faults_fail_the_tracking_verdict(fault: str) -> None:
     assert v["tracking"]["elbow_joint"] > math.radians(80)
 
 
-def _variant(tmp: Path, policy: str) -> tuple[Path, Path]:
+def _variant(tmp: Path, policy: str) -> Path:
+    """The example with the elbow limited to [-1 rad, 1 rad] and ``on_limit: policy``, generated."""
     text = plant("lower: -150 deg, upper: 150 deg", "lower: -1 rad, upper: 1 rad")
     text = plant(
         "{name: elbow_joint, command: [position], state: [position, velocity], on_limit: reject",
@@ -113,53 +114,52 @@ def _variant(tmp: Path, policy: str) -> tuple[Path, Path]:
     spec.write_text(text)
     outcome = generate(spec)
     assert not outcome.failed, outcome.findings
-    traj = tmp / "t.yaml"
+    return spec
+
+
+@pytest.fixture(scope="module")
+def limited(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """One generated variant per policy, shared by the four limit tests (generating takes a second)."""
+    return {policy: _variant(tmp_path_factory.mktemp(policy), policy) for policy in ("reject", "clip")}
+
+
+# Hand values: the elbow's limits are -1 and +1 rad; the trajectory asks for 1.2 rad beyond
+# either side in 1 s, so the controller's desired position crosses the limit before 1 s.
+@pytest.mark.parametrize("side", [1.0, -1.0], ids=["above_upper", "below_lower"])
+@pytest.mark.parametrize("policy", ["reject", "clip"])
+def test_command_beyond_limit_rejected_or_clipped(
+    limited: dict[str, Path], tmp_path: Path, policy: str, side: float
+) -> None:
+    spec = limited[policy]
+    traj = tmp_path / "t.yaml"
     traj.write_text(
         "controller: arm_controller\njoints: [elbow_joint]\n"
-        'points:\n  - {time_from_start: "1 s", positions: ["1.2 rad"]}\n'
+        f'points:\n  - {{time_from_start: "1 s", positions: ["{1.2 * side:g} rad"]}}\n'
     )
-    return spec, traj
-
-
-@pytest.mark.parametrize("policy", ["reject", "clip"])
-def test_command_beyond_limit_rejected_or_clipped(tmp_path: Path, policy: str) -> None:
-    spec, traj = _variant(tmp_path, policy)
     robot = load_spec(spec).robot
-    package = tmp_path / "generated" / "warehouse_arm_description"
+    package = spec.parent.parent / "generated" / "warehouse_arm_description"
     out = run(package, robot, read_trajectory(traj, robot), 1.5, Plant("mock"))
     v = out.verdict()
-    final = [r for r in out.rows if r[1] == "elbow_joint"][-1]
+    commands = [r[3] for r in out.rows if r[1] == "elbow_joint"]
     if policy == "reject":
         assert v["rejected"] and not v["clipped"] and not v["ok"]
         first = v["rejected"][0]
-        assert first["joint"] == "elbow_joint" and first["limit"] == pytest.approx(1.0) and first["value"] > 1.0
-        assert final[3] <= 1.0 + 1e-12  # the hardware kept the last accepted command
+        assert first["joint"] == "elbow_joint" and first["limit"] == pytest.approx(side)
+        assert first["value"] * side > 1.0  # beyond the limit on the commanded side
+        # the hardware never took a command beyond the limit: it kept the last accepted one
+        assert all(-1.0 - 1e-12 <= c <= 1.0 + 1e-12 for c in commands)
+        assert abs(commands[-1]) < 1.0
     else:
         assert v["clipped"] and not v["rejected"]
         last = v["clipped"][-1]
-        assert last["proposed"] == pytest.approx(1.2) and last["applied"] == pytest.approx(1.0)
-        assert final[3] == pytest.approx(1.0)
+        assert last["proposed"] == pytest.approx(1.2 * side) and last["applied"] == pytest.approx(side)
+        assert last["limit"] == pytest.approx(side)
+        assert commands[-1] == pytest.approx(side)
 
 
 def test_control_cli_writes_every_file(tmp_path: Path) -> None:
     out = tmp_path / "evidence"
-    r = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "descgen",
-            "control",
-            "specs/warehouse_arm.yaml",
-            "--trajectory",
-            str(READY),
-            "--out",
-            str(out),
-        ],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        timeout=300,
-    )
+    r = cli("control", "specs/warehouse_arm.yaml", "--trajectory", READY, "--out", out)
     assert r.returncode == 0, r.stderr
     for name in (
         "lifecycle.jsonl",

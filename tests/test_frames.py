@@ -14,7 +14,7 @@ from descgen.model import ExternalFrame, Joint, JointStateSource
 from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, ROOT, require_tool
-from .helpers import run_cli
+from .helpers import cli
 
 ROBOT = load_spec(EXAMPLE).robot
 EVIDENCE = ROOT / "generated" / "warehouse_arm_description" / "evidence"
@@ -132,7 +132,7 @@ def test_second_joint_states_publisher(kind: str) -> None:
 def test_frames_cli() -> None:
     import json
 
-    r = run_cli("frames", "specs/warehouse_arm.yaml", "--format", "json")
+    r = cli("frames", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     doc = json.loads(r.stdout)
     assert len(doc["frames"]) == 14 and doc["summary"]["error"] == 0

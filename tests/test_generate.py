@@ -19,7 +19,7 @@ from descgen.findings import InputError
 from descgen.generate import check, generate
 
 from .conftest import ROOT, require_tool
-from .helpers import EXAMPLE_TEXT, plant, run_cli
+from .helpers import EXAMPLE_TEXT, cli, plant, run_cli
 
 PKG = "warehouse_arm_description"
 
@@ -41,8 +41,6 @@ def snapshot(folder: Path) -> dict[str, str]:
     }
 
 
-
-
 @pytest.fixture
 def generated(tmp_path: Path) -> tuple[Path, Path]:
     spec = project(tmp_path)
@@ -51,14 +49,15 @@ def generated(tmp_path: Path) -> tuple[Path, Path]:
     return spec, tmp_path / "generated" / PKG
 
 
+@pytest.mark.e2e
 def test_committed_files_are_up_to_date() -> None:
+    # end to end, as a user runs it: `python -m descgen check` in a fresh interpreter
     r = run_cli("check", "specs/warehouse_arm.yaml")
     assert r.returncode == 0, r.stdout + r.stderr
 
 
 def test_package_layout(generated: tuple[Path, Path]) -> None:
     _, pkg = generated
-    assert (pkg / "evidence" / "frames.svg").is_file() == (shutil.which("dot") is not None)
     assert (pkg / "evidence" / "frames.svg").is_file() == (shutil.which("dot") is not None)
     files = set(snapshot(pkg))
     assert files == {
@@ -89,8 +88,8 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
     spec_b = project(tmp_path / "b")
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    assert run_cli("generate", str(spec_a), cwd=tmp_path / "a").returncode == 0
-    assert run_cli("generate", str(spec_b.resolve()), cwd=elsewhere).returncode == 0
+    assert cli("generate", str(spec_a), cwd=tmp_path / "a").returncode == 0
+    assert cli("generate", str(spec_b.resolve()), cwd=elsewhere).returncode == 0
     first = {
         k: (tmp_path / "a" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "a" / "generated" / PKG)
     }
@@ -98,7 +97,7 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
         k: (tmp_path / "b" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "b" / "generated" / PKG)
     }
     assert first == second
-    again = run_cli("generate", str(spec_a), cwd=tmp_path / "a")
+    again = cli("generate", str(spec_a), cwd=tmp_path / "a")
     assert again.returncode == 0 and "wrote 0 files, 13 unchanged" in again.stdout
     # and what the repository has committed is the same bytes
     committed = ROOT / "generated" / PKG
@@ -154,11 +153,11 @@ def test_hand_edit_guard(generated: tuple[Path, Path]) -> None:
     edited = urdf.read_text().replace('value="28"', 'value="29"')
     urdf.write_text(edited)
     spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
-    r = run_cli("generate", str(spec))
+    r = cli("generate", str(spec))
     assert r.returncode == 1
     assert "urdf/warehouse_arm.urdf was edited by hand" in r.stderr
     assert urdf.read_text() == edited
-    r = run_cli("generate", "--force", str(spec))
+    r = cli("generate", "--force", str(spec))
     assert r.returncode == 0, r.stderr
     assert 'value="28"' in urdf.read_text() and '<mass value="1.25"/>' in urdf.read_text()
 
@@ -183,7 +182,7 @@ def test_check_catches_one_character_in_every_file(generated: tuple[Path, Path])
 def test_check_catches_a_stale_spec_with_a_diff(generated: tuple[Path, Path]) -> None:
     spec, _ = generated
     spec.write_text(plant("{value: 1200 g, source: M03}", "{value: 1250 g, source: M03}"))
-    r = run_cli("check", str(spec))
+    r = cli("check", str(spec))
     assert r.returncode == 1
     assert "is stale: the spec changed" in r.stderr
     assert '-  <xacro:property name="drive_wheel_mass" value="1.2"/>' in r.stdout
@@ -192,14 +191,14 @@ def test_check_catches_a_stale_spec_with_a_diff(generated: tuple[Path, Path]) ->
 
 def test_check_on_a_missing_package(tmp_path: Path) -> None:
     spec = project(tmp_path)
-    r = run_cli("check", str(spec))
+    r = cli("check", str(spec))
     assert r.returncode == 1 and "is missing" in r.stderr
 
 
 def test_invalid_spec_is_exit_2_and_writes_nothing(tmp_path: Path) -> None:
     spec = project(tmp_path, plant("xyz: [25 mm, 0, 40 mm]", "xyz: [25 m, 0, 40 mm]"))
     for cmd in ("generate", "check"):
-        r = run_cli(cmd, str(spec))
+        r = cli(cmd, str(spec))
         assert r.returncode == 2, (cmd, r.stderr)
         assert "error[UNIT004]" in r.stderr
     assert not (tmp_path / "generated").exists()
@@ -259,7 +258,7 @@ def test_template_override_by_file_name(tmp_path: Path) -> None:
     overrides.mkdir()
     original = (ROOT / "templates" / "robot.rviz.j2").read_text()
     (overrides / "robot.rviz.j2").write_text(original.replace("Frame Rate: 30", "Frame Rate: 60"))
-    r = run_cli("generate", "--templates", str(overrides), str(spec))
+    r = cli("generate", "--templates", str(overrides), str(spec))
     assert r.returncode == 0, r.stderr
     pkg = tmp_path / "generated" / PKG
     assert "Frame Rate: 60" in (pkg / "rviz" / "warehouse_arm.rviz").read_text()
@@ -267,7 +266,7 @@ def test_template_override_by_file_name(tmp_path: Path) -> None:
     assert (pkg / "urdf" / "warehouse_arm.urdf").read_bytes() == (
         committed / "urdf" / "warehouse_arm.urdf"
     ).read_bytes()
-    assert run_cli("generate", "--templates", str(tmp_path / "nope"), str(spec)).returncode == 2
+    assert cli("generate", "--templates", str(tmp_path / "nope"), str(spec)).returncode == 2
 
 
 def test_broken_template_override_fails_the_xacro_check(tmp_path: Path) -> None:
@@ -357,7 +356,9 @@ def test_other_files_in_the_package_are_left_alone(generated: tuple[Path, Path])
 
 
 def test_generated_copy_can_be_checked_elsewhere(tmp_path: Path) -> None:
-    """The committed package is complete: copying the project elsewhere keeps check green."""
+    """The committed package is complete: copying the project (the spec, the trajectory its
+    control evidence records, the package) elsewhere keeps check green."""
     shutil.copytree(ROOT / "generated", tmp_path / "generated")
     spec = project(tmp_path)
+    shutil.copytree(ROOT / "specs" / "trajectories", tmp_path / "specs" / "trajectories")
     assert not check(spec).failed

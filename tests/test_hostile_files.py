@@ -423,6 +423,7 @@ def test_a_yaml_control_character_is_located(
 # --- a closed pipe -------------------------------------------------------------------------
 
 
+@pytest.mark.e2e
 def test_output_into_a_closed_pipe_ends_quietly() -> None:
     # the reader is gone before descgen starts writing (as `descgen rules | true`)
     proc = subprocess.Popen(
@@ -460,6 +461,7 @@ def welded(n: int, star: bool) -> str:
     return f'<robot name="welded">{links}{joints}</robot>'
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("star", [False, True], ids=["chain", "star"])
 def test_10000_welded_links_audit_in_linear_memory(tmp_path: Path, star: bool) -> None:
     urdf = tmp_path / "welded.urdf"

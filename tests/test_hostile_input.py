@@ -2,23 +2,19 @@
 
 ``descgen validate`` must refuse every one of these with exit code 2 and a message of the
 form ``FILE:LINE:COL: error[CODE]: ...`` (or ``FILE: error[CODE]: ...`` when there is no
-position) followed by a ``  hint:`` line. The subprocess timeout is the hang guard.
+position) followed by a ``  hint:`` line. The time limit of ``helpers.cli`` is the hang guard.
 """
 
 from __future__ import annotations
 
 import random
 import re
-import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pytest
 
-from descgen import cli
-
-from .helpers import EXAMPLE_TEXT, ROOT, line_of
+from .helpers import EXAMPLE_TEXT, Ran, cli, line_of
 
 TIMEOUT = 60
 QUICK = 20.0  # seconds; a refusal must not take anywhere near the hang guard
@@ -26,15 +22,10 @@ LOCATED = re.compile(r"^(?P<file>.+?):(?P<line>\d+):(?P<col>\d+): error\[(?P<cod
 UNLOCATED = re.compile(r"^(?P<file>.+?): error\[(?P<code>[A-Z]+\d{3})\]: (?P<msg>.+)$")
 
 
-def validate(*paths: str | Path) -> tuple[subprocess.CompletedProcess[str], float]:
+def validate(*paths: str | Path) -> tuple[Ran, float]:
+    """``descgen validate PATHS`` in this process (the CLI, not the library: exit code and stderr)."""
     start = time.monotonic()
-    r = subprocess.run(
-        [sys.executable, "-m", "descgen", "validate", *map(str, paths)],
-        capture_output=True,
-        text=True,
-        timeout=TIMEOUT,
-        cwd=ROOT,
-    )
+    r = cli("validate", *paths, timeout=TIMEOUT)
     return r, time.monotonic() - start
 
 
@@ -52,20 +43,10 @@ def errors_in(stderr: str) -> list[dict[str, str]]:
 
 
 def refused(path: str | Path, code_prefix: str = "") -> dict[str, str]:
-    """Run validate on one path in a subprocess, check the refusal, return its first error."""
+    """Run validate on one path, check the refusal, return its first error."""
     r, took = validate(path)
     assert took < QUICK, f"took {took:.1f} s"
     return check_refusal(r.returncode, r.stdout, r.stderr, path, code_prefix)
-
-
-def refused_in_process(path: str | Path, capsys: pytest.CaptureFixture[str], code_prefix: str = "") -> dict[str, str]:
-    """The same through ``descgen.cli.main`` in this process (no 1.5 s interpreter start per case).
-
-    An exception other than InputError escapes ``main`` and fails the test, like a traceback would.
-    """
-    code = cli.main(["validate", str(path)])
-    out, err = capsys.readouterr()
-    return check_refusal(code, out, err, path, code_prefix)
 
 
 def check_refusal(code: int, stdout: str, stderr: str, path: str | Path, code_prefix: str) -> dict[str, str]:
@@ -288,14 +269,12 @@ YAML_TYPE_CORNERS = [
 
 
 @pytest.mark.parametrize(("text", "line"), [c[1:] for c in YAML_TYPE_CORNERS], ids=[c[0] for c in YAML_TYPE_CORNERS])
-def test_yaml_explicit_types_that_cannot_be_built(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], text: str, line: int
-) -> None:
-    e = refused_in_process(write(tmp_path, "typed.yaml", text), capsys)
+def test_yaml_explicit_types_that_cannot_be_built(tmp_path: Path, text: str, line: int) -> None:
+    e = refused(write(tmp_path, "typed.yaml", text))
     assert int(e["line"]) == line, e
 
 
-def test_huge_integer_in_a_quantity(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_huge_integer_in_a_quantity(tmp_path: Path) -> None:
     text = EXAMPLE_TEXT.replace("{mass: 300 g, from: collision}", "{mass: " + "9" * 400 + " g, from: collision}", 1)
-    e = refused_in_process(write(tmp_path, "huge_number.yaml", text), capsys)
+    e = refused(write(tmp_path, "huge_number.yaml", text))
     assert int(e["line"]) == line_of(text, "{mass: 999"), e

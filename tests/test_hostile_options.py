@@ -4,6 +4,7 @@ never a traceback, a hang, or an "ok" that checked nothing."""
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import csv
 import io
@@ -457,9 +458,167 @@ def test_control_out_under_a_file(tmp_path: Path) -> None:
     assert rc == 2 and "error[CTRL034]" in err and "afile" in err, err
 
 
+# --------------------------------------------------------------------------- every option
+
+
+NOSPEC = "no/such/spec.yaml"  # parse-time checks must refuse before any spec is read
+ARGPARSE = "argparse"  # argparse's own usage error (a bad choice, a flag given a value)
+
+# (command, option, argv with {bag} {afile} {tmp} placeholders, what stderr must hold)
+# Every option of every command appears at least once (checked below); a value a `type=`
+# callable refuses is given with a spec that does not exist, so a check that runs after the
+# spec is read (or not at all) shows up as a different error.
+BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
+    ("validate", "spec", ["validate", NOSPEC], "error[YAML002]"),
+    ("validate", "--format", ["validate", NOSPEC, "--format", "xml"], "argument --format: invalid choice: 'xml'"),
+    ("generate", "spec", ["generate", NOSPEC, "--out", "{tmp}/o"], "error[YAML002]"),
+    ("generate", "--out", ["generate", NOSPEC, "--out", ""], "argument --out: an empty path names nothing"),
+    ("generate", "--templates", ["generate", NOSPEC, "--templates", "{afile}"], "error[GEN010]: --templates"),
+    ("generate", "--force", ["generate", NOSPEC, "--force=yes"], "argument --force: ignored explicit argument 'yes'"),
+    ("check", "spec", ["check", NOSPEC], "error[YAML002]"),
+    ("check", "--out", ["check", NOSPEC, "--out", " "], "argument --out: an empty path names nothing"),
+    ("check", "--templates", ["check", NOSPEC, "--templates", "{tmp}/none"], "error[GEN010]: --templates"),
+    ("audit", "path", ["audit", "{tmp}/none.urdf"], "error[READ001]"),
+    ("audit", "--srdf", ["audit", SPEC, "--srdf", "{tmp}/none.srdf"], "error[READ001]"),
+    ("audit", "--controllers", ["audit", SPEC, "--controllers", "{tmp}/none.yaml"], "error[READ001]"),
+    ("audit", "--xacro-arg", ["audit", NOSPEC, "--xacro-arg", "use_gripper"], "error[READ005]: --xacro-arg"),
+    ("audit", "--package-path", ["audit", NOSPEC, "--package-path", "{tmp}/none"], "argument --package-path: '"),
+    ("audit", "--trust-xacro", ["audit", NOSPEC, "--trust-xacro=no"], "argument --trust-xacro: ignored explicit"),
+    ("audit", "--format", ["audit", NOSPEC, "--format", "html"], "argument --format: invalid choice: 'html'"),
+    ("audit", "--strict", ["audit", NOSPEC, "--strict=0"], "argument --strict: ignored explicit argument '0'"),
+    ("faults", "path", ["faults", "{tmp}/none.urdf"], "error[READ001]"),
+    ("faults", "--srdf", ["faults", SPEC, "--srdf", "{tmp}"], "error[READ040]"),
+    ("faults", "--controllers", ["faults", SPEC, "--controllers", ""], "argument --controllers: an empty path"),
+    ("faults", "--xacro-arg", ["faults", NOSPEC, "--xacro-arg", ":=1"], "error[READ005]: --xacro-arg"),
+    ("faults", "--package-path", ["faults", NOSPEC, "--package-path", "{afile}"], "' is not a folder"),
+    ("faults", "--trust-xacro", ["faults", NOSPEC, "--trust-xacro=1"], "argument --trust-xacro: ignored explicit"),
+    ("faults", "--format", ["faults", NOSPEC, "--format", "sarif"], "argument --format: invalid choice: 'sarif'"),
+    ("frames", "path", ["frames", NOSPEC], "error[READ001]"),
+    ("frames", "--srdf", ["frames", SPEC, "--srdf", ""], "argument --srdf: an empty path names nothing"),
+    ("frames", "--controllers", ["frames", SPEC, "--controllers", "{tmp}/none.yaml"], "error[READ001]"),
+    ("frames", "--xacro-arg", ["frames", NOSPEC, "--xacro-arg", "x=1"], "error[READ005]: --xacro-arg"),
+    ("frames", "--package-path", ["frames", NOSPEC, "--package-path", "{tmp}/none"], "' does not exist"),
+    ("frames", "--trust-xacro", ["frames", NOSPEC, "--trust-xacro=yes"], "argument --trust-xacro: ignored explicit"),
+    ("frames", "--format", ["frames", NOSPEC, "--format", "dot"], "argument --format: invalid choice: 'dot'"),
+    ("tf-audit", "bag", ["tf-audit", "{afile}", "--target", "odom"], "error[BAG014]"),
+    ("tf-audit", "--target", ["tf-audit", "{bag}", "--target", "no_frame"], "error[BAG012]"),
+    ("tf-audit", "--topic", ["tf-audit", "{bag}", "--target", "odom", "--topic", "/none"], "error[BAG002]"),
+    ("tf-audit", "--wait", ["tf-audit", "{afile}", "--target", "odom", "--wait", "5 kg"], "error[UNIT003]: --wait"),
+    ("tf-audit", "--max-age", ["tf-audit", "{afile}", "--target", "o", "--max-age", "2 h"], "[UNIT021]: --max-age"),
+    ("tf-audit", "--format", ["tf-audit", "{afile}", "--target", "o", "--format", "csv"], "invalid choice: 'csv'"),
+    ("tf-scenario", "spec", ["tf-scenario", NOSPEC, "--out", "{tmp}/rec"], "error[YAML002]"),
+    ("tf-scenario", "--out", ["tf-scenario", SPEC, "--out", "{afile}"], "error[BAG003]"),
+    ("tf-scenario", "--fault", ["tf-scenario", NOSPEC, "--out", "{tmp}/r", "--fault", "x"], "invalid choice: 'x'"),
+    ("tf-scenario", "--duration", ["tf-scenario", NOSPEC, "--out", "{tmp}/r", "--duration", "1 m"], "error[UNIT003]"),
+    ("tf-scenario", "--storage", ["tf-scenario", NOSPEC, "--out", "{tmp}/r", "--storage", "db"], "choice: 'db'"),
+    ("control", "spec", ["control", NOSPEC, "--trajectory", str(READY)], "error[YAML002]"),
+    ("control", "--trajectory", ["control", SPEC, "--trajectory", "{tmp}/none.yaml"], "error[YAML002]"),
+    ("control", "--duration", ["control", NOSPEC, "--trajectory", "t", "--duration", "2 Hz"], "error[UNIT003]"),
+    ("control", "--plant", ["control", NOSPEC, "--trajectory", "t", "--plant", "real"], "invalid choice: 'real'"),
+    (
+        "control",
+        "--plant-fault",
+        ["control", NOSPEC, "--trajectory", "t", "--plant", "sim", "--plant-fault", "elbow_joint:=wobble"],
+        "error[CTRL032]: --plant-fault 'elbow_joint:=wobble': unknown fault kind 'wobble'",
+    ),
+    ("control", "--package", ["control", SPEC, "--trajectory", str(READY), "--package", "{tmp}"], "error[CTRL021]"),
+    ("control", "--out", ["control", SPEC, "--trajectory", str(READY), "--out", "{afile}/ev"], "error[CTRL034]"),
+    ("poses", "spec", ["poses", NOSPEC], "error[YAML002]"),
+    ("poses", "--format", ["poses", NOSPEC, "--format", "xml"], "argument --format: invalid choice: 'xml'"),
+    ("rules", "code", ["rules", "NOPE999"], "error[RULE001]: no code NOPE999 in the catalogue"),
+    ("rules", "--group", ["rules", "--group", "audit"], "argument --group: invalid choice: 'audit'"),
+]
+
+
+def _options_of_every_command() -> set[tuple[str, str]]:
+    """(command, option or positional) for every argument the parser declares."""
+    from descgen.cli import parser
+
+    sub = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return {
+        (name, a.option_strings[-1] if a.option_strings else a.dest)
+        for name, p in sub.choices.items()
+        for a in p._actions
+        if not isinstance(a, argparse._HelpAction)
+    }
+
+
+def test_every_option_of_every_command_has_a_bad_value_case() -> None:
+    assert _options_of_every_command() == {(c, o) for c, o, _, _ in BAD_OPTIONS}
+
+
+def _exit_of(argv: list[str]) -> tuple[int, str]:
+    """``main(argv)`` in process: (exit code, stderr); argparse's SystemExit counts as a return."""
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        try:
+            code = main(argv)
+        except SystemExit as exc:
+            code = exc.code if isinstance(exc.code, int) else 2
+    return code, err.getvalue()
+
+
+@pytest.mark.parametrize(("command", "option", "argv", "needle"), BAD_OPTIONS, ids=lambda v: str(v)[:40])
+def test_bad_value_of_every_option_is_exit_2_with_a_message(
+    recording: Path, tmp_path: Path, command: str, option: str, argv: list[str], needle: str
+) -> None:
+    (tmp_path / "afile").write_text("x")
+    before = sorted(tmp_path.rglob("*"))
+    given = [a.format(bag=recording, afile=tmp_path / "afile", tmp=tmp_path) for a in argv]
+    code, err = _exit_of(given)
+    assert code == 2 and "Traceback" not in err, err
+    assert needle in err, err
+    if "[" in needle:  # a finding: one line at its place, then its hint
+        first, hint = err.splitlines()[:2]
+        assert needle in first and ": error[" in first and hint.startswith("  hint: "), err
+    else:  # argparse: usage, then the command and the argument named
+        assert err.startswith("usage: descgen") and f"descgen {command}: error: argument" in err, err
+    assert sorted(tmp_path.rglob("*")) == before  # nothing written
+
+
+def test_option_values_are_checked_before_the_command_runs(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A bad --duration is refused while parsing: the spec is never read."""
+    import descgen.spec
+
+    def never(*_: object, **__: object) -> None:
+        raise AssertionError("the spec was read before the options were checked")
+
+    monkeypatch.setattr(descgen.spec, "load_spec", never)
+    code, err = _exit_of(["control", SPEC, "--trajectory", str(READY), "--duration", "-1 s"])
+    assert code == 2 and err.startswith("<command line>: error[UNIT021]: --duration:"), err
+    code, err = _exit_of(["tf-scenario", SPEC, "--out", "x", "--duration", "1 kg"])
+    assert code == 2 and err.startswith("<command line>: error[UNIT003]: --duration:"), err
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["--xacro-arg", "a:=b:=c"], ("a", "b:=c")),  # the first := splits, as xacro does
+        (["--xacro-arg", "reach:="], ("reach", "")),
+    ],
+)
+def test_xacro_arg_values_read_as_name_and_value(argv: list[str], expected: tuple[str, str]) -> None:
+    from descgen.cli import parser
+
+    args = parser().parse_args(["audit", SPEC, *argv])
+    assert args.xacro_arg == [expected]
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "expected_ns"),
+    [("--wait", "50ms", 50_000_000), ("--wait", "0.25 s", 250_000_000), ("--max-age", "1.5 min", 90_000_000_000)],
+)
+def test_time_options_parse_to_nanoseconds(option: str, value: str, expected_ns: int) -> None:
+    from descgen.cli import parser
+
+    args = parser().parse_args(["tf-audit", "bag", "--target", "odom", option, value])
+    assert getattr(args, option[2:].replace("-", "_")) == expected_ns  # hand values: 50 ms = 5e7 ns, ...
+
+
 # --------------------------------------------------------------------------- end to end
 
 
+@pytest.mark.e2e
 def test_hostile_options_end_to_end(tmp_path: Path) -> None:
     r = run_cli("tf-scenario", SPEC, "--out", str(tmp_path / "rec"), "--duration", "9**9**9")
     assert r.returncode == 2 and "Traceback" not in r.stderr and "error[UNIT020]: --duration" in r.stderr

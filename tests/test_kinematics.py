@@ -17,12 +17,10 @@ from descgen.render import render_package
 from descgen.spec import load_spec, load_spec_text
 
 from .conftest import EXAMPLE, ROOT
-from .helpers import EXAMPLE_TEXT, plant, run_cli
-
-pin = pytest.importorskip("pinocchio")
+from .helpers import EXAMPLE_TEXT, cli, plant
 
 
-def pin_frames(urdf_text: str, values: dict[str, float]) -> dict[str, np.ndarray]:
+def pin_frames(pin, urdf_text: str, values: dict[str, float]) -> dict[str, np.ndarray]:  # type: ignore[no-untyped-def]
     """Every link frame in the root frame, computed by pinocchio from the URDF."""
     model = pin.buildModelFromXML(urdf_text)
     data = model.createData()
@@ -45,10 +43,10 @@ def pin_frames(urdf_text: str, values: dict[str, float]) -> dict[str, np.ndarray
     return out
 
 
-def assert_same_frames(robot, values: dict[str, float]) -> None:  # type: ignore[no-untyped-def]
+def assert_same_frames(pin, robot, values: dict[str, float]) -> None:  # type: ignore[no-untyped-def]
     urdf = render_package(robot, "specs/x.yaml")[f"urdf/{robot.name}.urdf"]
     ours = kinematics.forward(robot, values)
-    theirs = pin_frames(urdf, values)
+    theirs = pin_frames(pin, urdf, values)
     root = robot.root()
     for link in robot.links:
         if link.name == root:
@@ -75,7 +73,7 @@ def test_ready_pose_by_hand() -> None:
     np.testing.assert_allclose(poses["camera_link"][:3, 3], (0.210, 0.0, 0.885), atol=1e-12)
 
 
-def test_example_agrees_with_pinocchio_at_random_configurations() -> None:
+def test_example_agrees_with_pinocchio_at_random_configurations(pin) -> None:  # type: ignore[no-untyped-def]
     robot = load_spec(EXAMPLE).robot
     rng = np.random.default_rng(7)
     for _ in range(20):
@@ -85,7 +83,7 @@ def test_example_agrees_with_pinocchio_at_random_configurations() -> None:
                 values[j.name] = float(rng.uniform(-10, 10))
             elif j.type in ("revolute", "prismatic"):
                 values[j.name] = float(rng.uniform(j.limit.lower, j.limit.upper))
-        assert_same_frames(robot, values)
+        assert_same_frames(pin, robot, values)
 
 
 JOINT_TYPES = ("fixed", "revolute", "continuous", "prismatic", "floating", "planar")
@@ -135,10 +133,10 @@ def random_robot(draw: st.DrawFn) -> tuple[str, dict[str, float]]:
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(random_robot())
-def test_random_trees_agree_with_pinocchio(case: tuple[str, dict[str, float]]) -> None:
+def test_random_trees_agree_with_pinocchio(pin, case: tuple[str, dict[str, float]]) -> None:  # type: ignore[no-untyped-def]
     text, values = case
     robot = load_spec_text(text, "random.yaml", rules=False).robot  # kinematics only: FRAME003 would object
-    assert_same_frames(robot, values)
+    assert_same_frames(pin, robot, values)
 
 
 def test_measured_poses_pass() -> None:
@@ -160,7 +158,7 @@ def test_measured_poses_pass() -> None:
 
 
 def test_poses_cli() -> None:
-    r = run_cli("poses", "specs/warehouse_arm.yaml", "--format", "json")
+    r = cli("poses", "specs/warehouse_arm.yaml", "--format", "json")
     assert r.returncode == 0, r.stderr
     import json
 

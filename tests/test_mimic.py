@@ -24,8 +24,6 @@ from descgen.spec import load_spec, load_spec_text
 
 from .helpers import ROOT, line_of, plant
 
-pin = pytest.importorskip("pinocchio")
-
 FIXTURE = ROOT / "tests" / "data" / "mimic" / "gripper.yaml"
 TEXT = FIXTURE.read_text()
 LEADER, FOLLOWER = "finger_left_joint", "finger_right_joint"
@@ -38,7 +36,9 @@ def urdf_of(text: str, tmp: Path, name: str = "robot.urdf") -> Path:
     return path
 
 
-def pin_positions(urdf: Path, values: dict[str, float], frames: list[str], use_mimic: bool) -> dict[str, np.ndarray]:
+def pin_positions(
+    pin, urdf: Path, values: dict[str, float], frames: list[str], use_mimic: bool
+) -> dict[str, np.ndarray]:
     """Frame origins in the root frame by pinocchio; ``values`` by joint name (1-DOF joints;
     continuous joints as an angle). With ``use_mimic`` pinocchio computes the followers."""
     model = pin.buildModelFromUrdf(str(urdf), mimic=use_mimic)
@@ -66,13 +66,13 @@ def ydf_positions(urdf: Path, leaders: dict[str, float], frames: list[str], root
 # --- the gripper fixture --------------------------------------------------------------
 
 
-def test_fixture_poses_are_what_pinocchio_and_yourdfpy_measure(tmp_path: Path) -> None:
+def test_fixture_poses_are_what_pinocchio_and_yourdfpy_measure(pin, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     loaded = load_spec(FIXTURE)
     urdf = urdf_of(TEXT, tmp_path)
     for kp in loaded.robot.known_poses:
         leaders = dict(kp.joints)
         frames = [fm.frame for fm in kp.frames]
-        theirs = pin_positions(urdf, leaders, frames, use_mimic=True)
+        theirs = pin_positions(pin, urdf, leaders, frames, use_mimic=True)
         ydf = ydf_positions(urdf, leaders, frames, "base_link")
         for fm in kp.frames:
             # the fixture's numbers are the oracles' numbers (so the poses test below is fair)
@@ -323,8 +323,10 @@ def expand(values: dict[str, float], mimics: dict[str, tuple[str, float, float]]
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(mimic_tree())
-def test_random_mimic_trees_agree_with_pinocchio_and_yourdfpy(
-    tmp_path_factory: pytest.TempPathFactory, case: tuple[str, dict[str, float], dict[str, tuple[str, float, float]]]
+def test_random_mimic_trees_agree_with_pinocchio_and_yourdfpy(  # type: ignore[no-untyped-def]
+    pin,
+    tmp_path_factory: pytest.TempPathFactory,
+    case: tuple[str, dict[str, float], dict[str, tuple[str, float, float]]],
 ) -> None:
     text, values, mimics = case
     robot = load_spec_text(text, "random.yaml", rules=False).robot  # JOINT007 objects to chains
@@ -332,7 +334,7 @@ def test_random_mimic_trees_agree_with_pinocchio_and_yourdfpy(
     urdf = urdf_of(text, tmp_path_factory.mktemp("tree"))
     links = [lk.name for lk in robot.links if lk.name != "l0"]
     # pinocchio without mimic, every follower expanded by hand from its leader
-    theirs = pin_positions(urdf, expand(values, mimics), links, use_mimic=False)
+    theirs = pin_positions(pin, urdf, expand(values, mimics), links, use_mimic=False)
     for name in links:
         np.testing.assert_allclose(ours[name], theirs[name], atol=1e-9, rtol=0, err_msg=name)
     chains = any(lead in mimics for lead, _, _ in mimics.values())
@@ -344,7 +346,7 @@ def test_random_mimic_trees_agree_with_pinocchio_and_yourdfpy(
         np.testing.assert_allclose(ours[name], ydf[name], atol=1e-9, rtol=0, err_msg=name)
     if all(robot.joint(lead).type != "continuous" for lead, _, _ in mimics.values()):  # type: ignore[union-attr]
         try:
-            native = pin_positions(urdf, values, links, use_mimic=True)  # pinocchio's own mimic joints
+            native = pin_positions(pin, urdf, values, links, use_mimic=True)  # pinocchio's own mimic joints
         except ValueError as exc:  # pinocchio needs each leader before its follower in its tree walk
             assert "not in the kinematic tree" in str(exc)
             event("pinocchio's own mimic: leader after follower")

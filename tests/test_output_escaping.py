@@ -28,8 +28,8 @@ from descgen.generate import plan
 from descgen.render import header
 from descgen.render.formatting import mermaid, pyinner, pystr, yamlstr
 
-from .helpers import EXAMPLE_TEXT, line_of, plant, run_cli
-from .test_hostile_input import refused_in_process
+from .helpers import EXAMPLE_TEXT, cli, line_of, plant
+from .test_hostile_input import refused
 
 PAYLOAD = "x\nimport os; os.system('id')\n# --> ]]> \" ' | ` ${1+1} $(find pkg) \\ {{ a }}\t\u2028 end"
 # the same attack without line breaks, tabs or separators, for fields that are one line
@@ -288,7 +288,7 @@ def test_line_break_in_a_one_line_field_is_refused_on_its_line(
 ) -> None:
     text = spec_with(field, PAYLOAD)
     path = write_spec(tmp_path, text)
-    first = refused_in_process(path, capsys, "SPEC021")
+    first = refused(path, "SPEC021")
     assert int(first["line"]) == line_of(text, quoted(PAYLOAD))
     assert "\\n" in first["msg"] and "one line" in first["msg"]
 
@@ -304,14 +304,14 @@ def test_one_line_payload_stays_data(field: str, tmp_path: Path) -> None:
 def test_control_character_in_a_description_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # XML cannot hold U+0001 even in a comment (lxml refused the URDF with a traceback before)
     text = spec_with("link_description", "chassis\x01")
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC020")
+    first = refused(write_spec(tmp_path, text), "SPEC020")
     assert int(first["line"]) == line_of(text, "chassis\\u0001")
 
 
 def test_carriage_return_in_a_hardware_param_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # XML reads \r back as \n, so generate's round trip refused what validate passed
     text = spec_with("hardware_param", "a\rb")
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC021")
+    first = refused(write_spec(tmp_path, text), "SPEC021")
     assert int(first["line"]) == line_of(text, '"a\\rb"')
 
 
@@ -333,9 +333,9 @@ def test_spec_file_name_stays_a_comment(tmp_path: Path, clean: dict[str, str]) -
 def test_spec_file_name_end_to_end(tmp_path: Path) -> None:
     """generate then check through the command; the launch file compiles to the clean module."""
     spec = write_spec(tmp_path, EXAMPLE_TEXT, HOSTILE_NAME)
-    r = run_cli("generate", str(spec), "--out", str(tmp_path / "generated"), cwd=tmp_path)
+    r = cli("generate", str(spec), "--out", str(tmp_path / "generated"), cwd=tmp_path)
     assert r.returncode == 0, r.stderr
-    r = run_cli("check", str(spec), "--out", str(tmp_path / "generated"), cwd=tmp_path)
+    r = cli("check", str(spec), "--out", str(tmp_path / "generated"), cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     pkg = tmp_path / "generated" / "warehouse_arm_description"
     launch = (pkg / "launch" / "display.launch.py").read_text()
@@ -357,14 +357,14 @@ def test_header_round_trips_a_hostile_display(suffix: str) -> None:
 
 
 def test_spec_without_links_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    first = refused_in_process(write_spec(tmp_path, "name: empty\n"), capsys, "SPEC023")
+    first = refused(write_spec(tmp_path, "name: empty\n"), "SPEC023")
     assert "no links" in first["msg"]
 
 
 def test_duplicate_srdf_group_is_refused_at_the_second(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     group = "    - name: arm\n      chain: {base: arm_base_link, tip: tool_link}\n"
     text = plant(group, group + group)
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC024")
+    first = refused(write_spec(tmp_path, text), "SPEC024")
     assert int(first["line"]) == line_of(text, group) + 2
     assert "'arm'" in first["msg"]
 
@@ -372,7 +372,7 @@ def test_duplicate_srdf_group_is_refused_at_the_second(tmp_path: Path, capsys: p
 def test_duplicate_group_state_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     state = "    - {name: ready, group: arm, pose: ready}\n"
     text = plant(state, state + "    - {name: ready, group: arm, pose: zero}\n")
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC024")
+    first = refused(write_spec(tmp_path, text), "SPEC024")
     assert int(first["line"]) == line_of(text, state) + 1
 
 
@@ -407,13 +407,13 @@ def test_package_metadata_catkin_refuses_is_refused_at_validate(
         pkg.validate(warnings=warned)
     assert "version" not in old or warned
     text = plant(old, new)
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC025")
+    first = refused(write_spec(tmp_path, text), "SPEC025")
     assert int(first["line"]) == line_of(text, new)
 
 
 def test_part_named_like_a_xacro_tag_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     text = plant("  - name: drive_wheel", "  - name: property")
-    first = refused_in_process(write_spec(tmp_path, text), capsys, "SPEC022")
+    first = refused(write_spec(tmp_path, text), "SPEC022")
     assert int(first["line"]) == line_of(text, "  - name: property")
 
 

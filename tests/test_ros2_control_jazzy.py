@@ -14,7 +14,7 @@ from lxml import etree
 
 from descgen.audit import run as run_rules
 from descgen.cli import main
-from descgen.control.run import load_system
+from descgen.control.load import load_system
 from descgen.control.system import Plant
 from descgen.findings import Finding, InputError
 from descgen.readers.controllers import read_controllers_text

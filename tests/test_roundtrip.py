@@ -137,9 +137,11 @@ def test_controllers_check_reads_the_written_yaml() -> None:
 
     assert controllers_yaml(FILES, ROBOT, Path("/pkg")) == []
     files = dict(FILES)
-    files["config/ros2_controllers.yaml"] = FILES["config/ros2_controllers.yaml"].replace(
-        "joints: [lift_joint,", "joints: [wrist_joint, lift_joint,").replace(
-        "state_interfaces: [position, velocity]", "state_interfaces: [position, effort]")
+    files["config/ros2_controllers.yaml"] = (
+        FILES["config/ros2_controllers.yaml"]
+        .replace("joints: [lift_joint,", "joints: [wrist_joint, lift_joint,")
+        .replace("state_interfaces: [position, velocity]", "state_interfaces: [position, effort]")
+    )
     messages = [f.message for f in controllers_yaml(files, ROBOT, Path("/pkg"))]
     assert "controller 'arm_controller' joints names 'wrist_joint', not a URDF joint" in messages
     assert "controller 'arm_controller' reads 'lift_joint/effort', not exported" in messages

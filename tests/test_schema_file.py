@@ -7,7 +7,7 @@ import re
 
 from descgen.spec.schema import json_schema
 
-from .helpers import ROOT, run_cli
+from .helpers import ROOT, cli
 
 SCHEMA_FILE = ROOT / "specs" / "descgen-spec.schema.json"
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
@@ -15,7 +15,7 @@ MODELINE = re.compile(r"^#\s*yaml-language-server:\s*\$schema=(?P<target>\S+)\s*
 
 
 def test_cli_schema_equals_the_committed_file() -> None:
-    r = run_cli("schema")
+    r = cli("schema")
     assert r.returncode == 0, r.stderr
     printed = json.loads(r.stdout)
     committed = json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))

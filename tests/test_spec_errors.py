@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from .helpers import EXAMPLE_TEXT, errors_of, line_of, plant, run_cli
+from .helpers import EXAMPLE_TEXT, cli, errors_of, line_of, plant
 
 CASES = [
     # (id, old, new, expected code, text marking the expected line)
@@ -134,10 +134,8 @@ def test_plausibility_override_accepts_a_big_robot(tmp_path: Path) -> None:
     assert any("elbow_joint" in f.message for f in found)
 
 
-
-
 def test_cli_validate_example_exits_0() -> None:
-    r = run_cli("validate", "specs/warehouse_arm.yaml")
+    r = cli("validate", "specs/warehouse_arm.yaml")
     assert r.returncode == 0, r.stderr
     assert "valid" in r.stdout
 
@@ -146,7 +144,7 @@ def test_cli_reports_file_line_col_code_and_hint(tmp_path: Path) -> None:
     text = plant("{xyz: [0, 0, 85 mm], source: M09}", "{xyz: [0, 0, 85 kg], source: M09}")
     spec = tmp_path / "broken.yaml"
     spec.write_text(text)
-    r = run_cli("validate", str(spec))
+    r = cli("validate", str(spec))
     assert r.returncode == 2
     line = line_of(text, "85 kg")
     col = text.splitlines()[line - 1].index("85 kg") + 1
@@ -160,7 +158,7 @@ def test_cli_json_format(tmp_path: Path) -> None:
 
     spec = tmp_path / "broken.yaml"
     spec.write_text(plant("lower: -100 deg, upper: 100 deg", "lower: 100 deg, upper: -100 deg"))
-    r = run_cli("validate", "--format", "json", str(spec))
+    r = cli("validate", "--format", "json", str(spec))
     assert r.returncode == 2
     doc = json.loads(r.stdout)
     assert doc["summary"]["error"] == len([f for f in doc["findings"] if f["severity"] == "error"]) >= 1

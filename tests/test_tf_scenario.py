@@ -11,7 +11,7 @@ from descgen.spec import load_spec
 from descgen.tf import bagaudit, scenario
 
 from .conftest import EXAMPLE
-from .helpers import run_cli
+from .helpers import cli
 
 ROBOT = load_spec(EXAMPLE).robot
 START = 1_700_000_000 * 1_000_000_000
@@ -28,23 +28,35 @@ def camera_results(rep: bagaudit.Report) -> list[tuple[float, str]]:
     ]
 
 
-@pytest.mark.parametrize(
-    ("fault", "kind"), [("camera-future", "future"), ("odom-gap", "stale"), ("unknown-frame", "disconnected")]
-)
-def test_each_planted_fault_is_reported_at_its_messages(tmp_path: Path, fault: str, kind: str) -> None:
+# Which camera messages each fault spoils, by hand from the scenario's definition (module
+# docstring of descgen/tf/scenario.py): camera message k is exposed at t_k = k/30 s + 5 ms
+# (k = 0..299 in 10 s) and logged 20 ms later; the audit looks each one up at its log time.
+# - camera-future: stamps +300 ms for t_k in [2 s, 3 s): 2 <= k/30 + 0.005 < 3 gives k = 60..89,
+#   each stamped ahead of every transform received by then.
+# - odom-gap: the 100 Hz controller sends odom -> base_footprint every 20 ms (logged 2 ms
+#   later), none for t in [4 s, 5 s): the last before the gap is at 3.98 s, the next at 5.00 s.
+#   k = 119 (3.972 s) lies between 3.96 and 3.98; k = 120 (4.005 s) to k = 149 (4.972 s, logged
+#   4.992 s) are past the last sample received by their log time: stale. k = 150 (5.005 s) is
+#   looked up at 5.025 s, with the 5.00 s and 5.02 s samples in.
+# - unknown-frame: frame_id not in the tree for t_k in [6 s, 7 s): k = 180..209.
+SPOILED = {
+    "camera-future": ("future", range(60, 90)),
+    "odom-gap": ("stale", range(120, 150)),
+    "unknown-frame": ("disconnected", range(180, 210)),
+}
+
+
+@pytest.mark.parametrize("fault", list(SPOILED))
+def test_each_planted_fault_is_reported_at_its_messages(tmp_path: Path, fault: str) -> None:
     bag = tmp_path / "rec"
     scenario.write(ROBOT, bag, (fault,))
     rep = bagaudit.audit(bag, "odom", max_age_ns=100 * MS)
-    lo, hi = scenario.WINDOWS[fault]
+    kind, spoiled = SPOILED[fault]
     results = camera_results(rep)
-    assert len(results) == 300
-    bad = [(t, o) for t, o in results if o != "ok"]
-    assert bad, "the fault was not reported"
-    assert {o for _, o in bad} == {kind}
-    assert all(lo - 0.03 <= t < hi + 0.03 for t, _ in bad), bad  # only messages in the fault's window
-    inside = [o for t, o in results if lo + 0.03 <= t < hi - 0.03]
-    assert inside and all(o == kind for o in inside)
-    assert rep.counts[kind] == len(bad)
+    assert [round(t, 6) for t, _ in results] == [round(k / 30 + 0.005, 6) for k in range(300)]
+    assert [k for k, (_, o) in enumerate(results) if o != "ok"] == list(spoiled)
+    assert {o for k, (_, o) in enumerate(results) if k in spoiled} == {kind}
+    assert rep.counts[kind] == len(spoiled) == 30
 
 
 def test_clean_recording_is_all_ok_in_both_storages(tmp_path: Path) -> None:
@@ -64,27 +76,27 @@ def test_max_age_catches_interpolation_across_a_gap(tmp_path: Path) -> None:
     silent = bagaudit.audit(bag, "odom", wait_ns=2000 * MS)
     assert silent.counts["ok"] == silent.lookups
     flagged = bagaudit.audit(bag, "odom", wait_ns=2000 * MS, max_age_ns=100 * MS)
-    stale = [t for t, o in camera_results(flagged) if o == "stale"]
-    assert stale and all(4.0 < t < 5.0 for t in stale)
-
-
+    stale = [k for k, (_, o) in enumerate(camera_results(flagged)) if o == "stale"]
+    # waiting 2 s, k = 120..149 interpolate between the 3.98 s and 5.00 s samples; stale are
+    # those more than 100 ms from both: 4.08 < k/30 + 0.005 < 4.90, k = 123 (4.105 s) to 146 (4.872 s)
+    assert stale == list(range(123, 147))
 
 
 def test_cli_json_and_exit_codes(tmp_path: Path) -> None:
     bag = tmp_path / "rec"
-    r = run_cli("tf-scenario", "specs/warehouse_arm.yaml", "--out", str(bag), "--fault", "camera-future")
+    r = cli("tf-scenario", "specs/warehouse_arm.yaml", "--out", str(bag), "--fault", "camera-future")
     assert r.returncode == 0, r.stderr
-    r = run_cli("tf-audit", str(bag), "--target", "odom", "--max-age", "100 ms", "--format", "json")
+    r = cli("tf-audit", str(bag), "--target", "odom", "--max-age", "100 ms", "--format", "json")
     assert r.returncode == 1
     doc = json.loads(r.stdout)
     assert {"lookups", "ok", "disconnected", "stale", "future", "per_topic", "examples"} <= set(doc)
     assert doc["future"] == 30 and doc["ok"] == 270 and doc["lookups"] == 300
     assert doc["per_topic"]["/camera/camera_info"]["future"] == 30
     clean = tmp_path / "clean"
-    assert run_cli("tf-scenario", "specs/warehouse_arm.yaml", "--out", str(clean), "--duration", "2").returncode == 0
-    assert run_cli("tf-audit", str(clean), "--target", "base_footprint").returncode == 0
+    assert cli("tf-scenario", "specs/warehouse_arm.yaml", "--out", str(clean), "--duration", "2").returncode == 0
+    assert cli("tf-audit", str(clean), "--target", "base_footprint").returncode == 0
     broken = tmp_path / "broken"
     broken.mkdir()
     (broken / "metadata.yaml").write_text("not: a bag\n")
-    r = run_cli("tf-audit", str(broken), "--target", "odom")
+    r = cli("tf-audit", str(broken), "--target", "odom")
     assert r.returncode == 2 and "Traceback" not in r.stderr and "error[BAG001]" in r.stderr

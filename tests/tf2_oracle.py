@@ -54,8 +54,14 @@ def run(script):
             try:
                 r = buf.lookup_transform_core(op["target"], op["source"], stamp(op["time"]))
                 tr, ro = r.transform.translation, r.transform.rotation
-                out.append({"kind": "ok", "t": [tr.x, tr.y, tr.z], "q": [ro.x, ro.y, ro.z, ro.w],
-                            "stamp": r.header.stamp.to_nsec()})
+                out.append(
+                    {
+                        "kind": "ok",
+                        "t": [tr.x, tr.y, tr.z],
+                        "q": [ro.x, ro.y, ro.z, ro.w],
+                        "stamp": r.header.stamp.to_nsec(),
+                    }
+                )
             except Exception as exc:  # every tf2 exception is a result here
                 out.append({"kind": classify(exc), "message": str(exc)})
     return out

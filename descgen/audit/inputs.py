@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..findings import Finding, Where
-from ..model import Mesh, Robot, Ros2Control
+from ..model import Mesh, MeshState, Robot, Ros2Control
 from ..readers.controllers import read_controllers_text
 from ..readers.srdf import read_srdf_text
 from ..readers.urdf import read_urdf_text
@@ -46,9 +46,9 @@ def _package_root(start: Path) -> Path:
     return start
 
 
-def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) -> dict[str, str]:
+def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) -> dict[str, MeshState]:
     """ok | missing | escapes | unresolved, for every mesh filename."""
-    out: dict[str, str] = {}
+    out: dict[str, MeshState] = {}
     base = description.resolve().parent
     for lk in robot.links:
         for shape in lk.shapes():
@@ -63,7 +63,7 @@ def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) 
     return out
 
 
-def _mesh_state(name: str, base: Path, package_paths: Sequence[Path]) -> str:
+def _mesh_state(name: str, base: Path, package_paths: Sequence[Path]) -> MeshState:
     if name.startswith("package://"):
         pkg, _, rest = name[len("package://") :].partition("/")
         root = find_package(pkg, [*package_paths, base.parent, base]) if pkg else None
@@ -98,12 +98,10 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
             data = read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
         robot, found = read_urdf_text(data, display)
-    extras = dict(robot.extras)
     if options.srdf is not None:
         semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
         found += more
-        robot = dataclasses.replace(robot, semantic=semantic)
-        extras["srdf_robot_name"] = srdf_name
+        robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
         controllers, rate, more = read_controllers_text(
             _read(options.controllers, "controllers YAML").decode("utf-8", "replace"), str(options.controllers)
@@ -113,8 +111,8 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
         robot = dataclasses.replace(
             robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
         )
-    extras["mesh_status"] = mesh_status(robot, path, options.package_paths)
-    return dataclasses.replace(robot, extras=extras), found
+    status = mesh_status(robot, path, options.package_paths)
+    return dataclasses.replace(robot, mesh_status=tuple(status.items())), found
 
 
 def _read(path: Path, what: str) -> bytes:

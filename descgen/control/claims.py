@@ -210,3 +210,13 @@ def split(full: str) -> tuple[str, str]:
     """``joint/interface`` -> (joint, interface); interface names carry no slash."""
     component, _, iface = full.rpartition("/")
     return component, iface
+
+
+def command_pairs(c: Controller) -> list[tuple[str, str]]:
+    """(component, command interface) pairs a controller claims when active."""
+    return [split(k) for k in claims_of(c).command]
+
+
+def state_pairs(c: Controller) -> list[tuple[str, str]]:
+    """(component, state interface) pairs a controller reads when active."""
+    return [split(k) for k in claims_of(c).state]

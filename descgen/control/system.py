@@ -124,9 +124,10 @@ class Plant:
 FAULT_KINDS = ("stuck", "offset", "reversed")
 
 
-def plant_faults(items: Iterable[str], plant: str, robot: Robot) -> dict[str, str]:
-    """``--plant-fault JOINT:=KIND`` options as ``{joint: kind}``, every one checked: a fault
-    that is silently not planted would let a run pass that should fail."""
+def plant_faults(items: Iterable[tuple[str, str]], plant: str, robot: Robot) -> dict[str, str]:
+    """``--plant-fault JOINT:=KIND`` options, already read as (joint, kind) pairs of a known
+    kind (``cli_types.plant_fault``), as ``{joint: kind}``, every one checked against the
+    robot: a fault that is silently not planted would let a run pass that should fail."""
     found: list[Finding] = []
     faults: dict[str, str] = {}
     controlled = {j.name for j in robot.ros2_control.joints} if robot.ros2_control else set()
@@ -134,14 +135,9 @@ def plant_faults(items: Iterable[str], plant: str, robot: Robot) -> dict[str, st
     def bad(message: str, hint: str) -> None:
         found.append(Finding("CTRL032", "error", message, hint, "option", Where("<command line>")))
 
-    for item in items:
-        joint, sep, kind = item.partition(":=")
-        shown = ascii(item)
-        if not sep or not joint:
-            bad(f"--plant-fault {shown} is not JOINT:=KIND", "write e.g. --plant-fault elbow_joint:=stuck")
-        elif kind not in FAULT_KINDS:
-            bad(f"--plant-fault {shown}: unknown fault kind {kind!a}", f"use one of {', '.join(FAULT_KINDS)}")
-        elif joint not in controlled:
+    for joint, kind in items:
+        shown = ascii(f"{joint}:={kind}")
+        if joint not in controlled:
             bad(
                 f"--plant-fault {shown}: {joint!a} is not a joint under ros2_control",
                 "name one of " + ", ".join(sorted(controlled))

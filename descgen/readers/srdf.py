@@ -29,7 +29,7 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
         )
         for g in root.findall("group")
     )
-    multi_dof = {v.get("name") for v in root.findall("virtual_joint") if v.get("type") in ("floating", "planar")}
+    multi_dof = {v.get("name") for v in root.findall("virtual_joint") if v.get("type") in m.MULTI_DOF}
     states = []
     for s in root.findall("group_state"):
         values = []

@@ -222,7 +222,7 @@ class _Reader:
         child = e.find("child")
         axis_e = e.find("axis")
         axis: m.Vec3 | None
-        if jtype in ("fixed", "floating"):
+        if jtype in m.NO_AXIS:
             axis = None
         elif axis_e is None:
             axis = (1.0, 0.0, 0.0)

@@ -6,7 +6,7 @@ from typing import Any
 
 import yaml
 
-from .. import derive
+from .. import derive, display
 from ..model import DisabledPair, Robot
 from .formatting import num, vec, xacro_text
 from .views import Values, items
@@ -71,7 +71,7 @@ def controllers_yaml(robot: Robot) -> str:
 
 
 def _mm3(v: tuple[float, float, float] | None) -> str:
-    return "n/a" if v is None else ", ".join(f"{c * 1000:.1f}" for c in v)
+    return "n/a" if v is None else display.mm(v)
 
 
 def known_pose_tables(robot: Robot) -> list[dict[str, Any]]:

@@ -11,7 +11,21 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from ..model import Box, Collision, Cylinder, Geometry, Inertial, Joint, Link, Mesh, Pose, Robot, Sphere, Visual
+from ..model import (
+    NO_AXIS,
+    Box,
+    Collision,
+    Cylinder,
+    Geometry,
+    Inertial,
+    Joint,
+    Link,
+    Mesh,
+    Pose,
+    Robot,
+    Sphere,
+    Visual,
+)
 from .formatting import num, vec, xacro_text
 
 
@@ -218,7 +232,7 @@ def joint_view(
             ("k_position", num(s.k_position)),
             ("k_velocity", num(s.k_velocity)),
         )
-    axis = vec(j.axis) if j.axis is not None and j.type not in ("fixed", "floating") else None
+    axis = vec(j.axis) if j.axis is not None and j.type not in NO_AXIS else None
     comment = v.text(_comment(j.description, j.source))
     return JointView(
         name or j.name,

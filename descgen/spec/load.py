@@ -16,10 +16,12 @@ from ..findings import Finding, InputError, errors
 from ..model import Robot
 from ..units import Range
 from ..yamlsource import Document, Path_, load, loads
-from .build import Builder, missing_sources, ranges_from
+from .build import Builder
 from .errors import data_path, findings_from
 from .models import RobotSpec
+from .plausibility import ranges_from
 from .quantity import Measured
+from .rules import missing_sources
 
 
 @dataclass(frozen=True)
@@ -85,7 +87,9 @@ def _build(doc: Document, spec: RobotSpec, ranges: dict[str, Range]) -> tuple[Ro
     if spec.require_sources:
         problems += missing_sources(doc, spec)
     digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()
-    return replace(robot, spec_hash=digest, extras={"ranges": ranges}), problems
+    rho = ranges.get("density")  # UNIT010 judges masses against the spec's plausibility
+    density = None if rho is None else (rho.low, rho.high)
+    return replace(robot, spec_hash=digest, density_range=density), problems
 
 
 # -- every problem in one run --------------------------------------------------------------

@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from .. import units
+from .. import display, units
 
 QUANTITY_SCHEMA: dict[str, Any] = {
     "anyOf": [
@@ -90,7 +90,8 @@ def check_range(si: float, text: str, role: str, ranges: dict[str, units.Range])
     lo = units.describe_si(r.low, r.kind)
     hi = units.describe_si(r.high, r.kind)
     hint = f"if it is right, widen plausibility.{role} in the spec"
-    if mag > r.high and r.low <= mag / 1000 <= r.high:
+    off = display.thousand_off(mag, r.low, r.high)
+    if off == 1000:
         guess = {"length": "mm", "mass": "g"}.get(r.kind)
         thousand = (
             f'was it measured in {guess}? e.g. "{_number(text)} {guess}"'
@@ -98,7 +99,7 @@ def check_range(si: float, text: str, role: str, ranges: dict[str, units.Range])
             else "is it a thousand times too large?"
         )
         hint = f"{thousand}; {hint}"
-    elif mag < r.low and r.low <= mag * 1000 <= r.high:
+    elif off == 0.001:
         guess = {"length": "m", "mass": "kg"}.get(r.kind)
         thousand = (
             f'was it measured in {guess}? e.g. "{_number(text)} {guess}"'

@@ -26,7 +26,7 @@ import numpy as np
 from .. import mimic
 from ..findings import Finding, InputError, Where
 from ..kinematics import joint_transform
-from ..model import Robot
+from ..model import ONE_DOF, WITH_LIMITS, Robot
 from .buffer import quat_from_matrix
 
 FAULTS = ("camera-future", "odom-gap", "unknown-frame")
@@ -77,9 +77,7 @@ def joint_values(robot: Robot, t: float) -> dict[str, float]:
     for i, j in enumerate(robot.joints):
         if j.type == "continuous":
             out[j.name] = 2.0 * t
-        elif (
-            j.type in ("revolute", "prismatic") and j.limit and j.limit.lower is not None and j.limit.upper is not None
-        ):
+        elif j.type in WITH_LIMITS and j.limit and j.limit.lower is not None and j.limit.upper is not None:
             mid, amp = (j.limit.lower + j.limit.upper) / 2, (j.limit.upper - j.limit.lower) / 4
             out[j.name] = mid + amp * math.sin(0.5 * t + i)
     return mimic.resolve(robot, out)
@@ -158,7 +156,7 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     start = 1_700_000_000 * NS  # a fixed epoch: recordings are reproducible
     events: list[tuple[int, str, Any, str]] = []
     fixed = [j for j in robot.joints if j.type == "fixed" and j.parent and j.child]
-    movable = [j for j in robot.joints if j.type in ("revolute", "continuous", "prismatic") and j.parent and j.child]
+    movable = [j for j in robot.joints if j.type in ONE_DOF and j.parent and j.child]
     events.append(
         (
             start + 1_000_000,

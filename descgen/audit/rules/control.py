@@ -6,22 +6,13 @@ from collections import defaultdict
 from collections.abc import Iterator
 from typing import cast
 
-from ...control.claims import JOINT_PARAMS, claims_of, split
+from ...control.claims import JOINT_PARAMS, claims_of, command_pairs, state_pairs
+from ...control.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
 from ...findings import Finding
-from ...model import ControlJoint, Controller, HardwareBlock, Robot
+from ...model import WITH_LIMITS, Controller, HardwareBlock, Robot
 from ..registry import at, rule
 
 _SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
-
-
-def claims(c: Controller) -> list[tuple[str, str]]:
-    """(component, command interface) pairs a controller claims when active (control/claims.py)."""
-    return [split(k) for k in claims_of(c).command]
-
-
-def state_reads(c: Controller) -> list[tuple[str, str]]:
-    """(component, state interface) pairs a controller reads when active (control/claims.py)."""
-    return [split(k) for k in claims_of(c).state]
 
 
 def _list(v: object) -> list[object]:
@@ -78,7 +69,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
     state |= {(s.name, i.name) for s in rc.sensors for i in s.state}
     sensors = {s.name for s in rc.sensors}
     for c in rc.controllers:
-        for joint, iface in claims(c):
+        for joint, iface in command_pairs(c):
             if (joint, iface) not in cmd:
                 yield at(
                     "CTRL002",
@@ -88,7 +79,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
                     subject=f"controller:{c.name}",
                 )
         missing_sensor = set()
-        for comp, iface in state_reads(c):
+        for comp, iface in state_pairs(c):
             if (comp, iface) in state:
                 continue
             if c.type.startswith(_SENSOR_BROADCASTERS) and comp not in sensors:
@@ -146,7 +137,7 @@ def interface_claimed_twice(robot: Robot) -> Iterator[Finding]:
         return
     owners: dict[tuple[str, str], list[str]] = defaultdict(list)
     for c in rc.controllers:
-        for key in claims(c):
+        for key in command_pairs(c):
             owners[key].append(c.name)
     for (joint, iface), names in owners.items():
         if len(names) > 1:
@@ -354,7 +345,7 @@ def command_limit_beyond_urdf(robot: Robot) -> Iterator[Finding]:
             continue
         lm = j.limit
         for iface in cj.command:
-            if iface.name == "position" and j.type in ("revolute", "prismatic"):
+            if iface.name == "position" and j.type in WITH_LIMITS:
                 lo, hi = lm.lower, lm.upper
             elif iface.name == "velocity" and lm.velocity is not None:
                 lo, hi = -abs(lm.velocity), abs(lm.velocity)
@@ -448,25 +439,6 @@ def _in_spec(robot: Robot) -> bool:
     return robot.spec_hash is not None
 
 
-def mimic_attribute(cj: ControlJoint) -> bool | None:
-    """The ``mimic`` attribute as Jazzy's parse_bool reads it: true/false in any case; None
-    when absent (NOT_SET). Anything else throws std::invalid_argument (CTRL043)."""
-    if cj.mimic is None:
-        return None
-    return {"true": True, "false": False}.get(cj.mimic.lower())  # parse_bool lowercases, never strips
-
-
-def _valid_attribute(cj: ControlJoint) -> bool:
-    return cj.mimic is None or cj.mimic.lower() in ("true", "false")
-
-
-def active_mimic(robot: Robot, cj: ControlJoint) -> bool:
-    """Jazzy treats a ros2_control joint as a mimic joint when its URDF joint has <mimic>
-    and the attribute is not false."""
-    j = robot.joint(cj.name)
-    return j is not None and j.mimic is not None and _valid_attribute(cj) and mimic_attribute(cj) is not False
-
-
 @rule("CTRL040", "mimic-joint-commanded", "error")
 def mimic_joint_commanded(robot: Robot) -> Iterator[Finding]:
     """## What it does
@@ -523,7 +495,7 @@ def mimic_attribute_without_urdf_mimic(robot: Robot) -> Iterator[Finding]:
     rc = robot.ros2_control
     for cj in rc.joints if rc is not None else ():
         j = robot.joint(cj.name)
-        if j is not None and j.mimic is None and _valid_attribute(cj) and mimic_attribute(cj) is True:
+        if j is not None and j.mimic is None and valid_mimic_attribute(cj) and mimic_attribute(cj) is True:
             yield at(
                 "CTRL041",
                 cj,
@@ -583,7 +555,7 @@ def mimic_attribute_invalid(robot: Robot) -> Iterator[Finding]:
     """
     rc = robot.ros2_control
     for cj in rc.joints if rc is not None else ():
-        if not _valid_attribute(cj):
+        if not valid_mimic_attribute(cj):
             yield at(
                 "CTRL043",
                 cj,

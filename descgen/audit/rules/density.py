@@ -4,21 +4,18 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ... import inertia, units
+from ... import display, inertia, units
 from ...findings import Finding, Severity
 from ...model import Robot
+from ...physics import PLACEHOLDER, PLACEHOLDER_MASS, dims
 from ..registry import at, rule
-from .scale import dims
-
-PLACEHOLDER = 0.011  # metres: shapes within a centimetre everywhere are markers and contact points
-PLACEHOLDER_MASS = 0.001  # kg: dummy masses (the real one sits on a welded link)
 
 
-def density_range(robot: Robot) -> units.Range:
-    ranges = robot.extras.get("ranges")
-    found = ranges.get("density") if isinstance(ranges, dict) else None
-    if isinstance(found, units.Range):
-        return found
+def _density_range(robot: Robot) -> units.Range:
+    """The spec's ``plausibility.density``, else the default (a read URDF has none)."""
+    if robot.density_range is not None:
+        low, high = robot.density_range
+        return units.Range("density", low, high)
     return units.DEFAULT_RANGES["density"]
 
 
@@ -32,7 +29,7 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
     A density a thousand times off is a mass in the wrong unit (1200 g written as 1200 kg),
     which no parser notices and which breaks simulation and the static-torque check.
     """
-    r = density_range(robot)
+    r = _density_range(robot)
     for lk in robot.links:
         if lk.inertial is None or lk.inertial.mass is None or lk.inertial.mass <= PLACEHOLDER_MASS:
             continue
@@ -51,9 +48,10 @@ def implausible_density(robot: Robot) -> Iterator[Finding]:
         if r.low <= rho <= r.high:
             continue
         hint = "is the mass in the wrong unit (g vs kg)? or the geometry (mm vs m)?"
-        if rho > r.high and r.low <= rho / 1000 <= r.high:
+        off = display.thousand_off(rho, r.low, r.high)
+        if off == 1000:
             hint = "the mass looks 1000x too large for the shape: grams written as kilograms, or a stand-in shape?"
-        elif rho < r.low and r.low <= rho * 1000 <= r.high:
+        elif off == 0.001:
             hint = "the mass looks 1000x too small (kilograms written as grams?), or the geometry 10x too large"
         # heavier than any metal is impossible; lighter than foam may be a light part in a
         # generous shape, unless it is a thousand times lighter still

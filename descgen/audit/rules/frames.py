@@ -7,7 +7,7 @@ from collections.abc import Iterator
 
 from ...findings import Finding
 from ...frames import RSP, edges
-from ...model import Robot
+from ...model import ONE_DOF, Robot
 from ..registry import at, rule
 
 
@@ -149,7 +149,7 @@ def desired_on_joint_states(robot: Robot) -> Iterator[Finding]:
                 subject=f"node:{s.node}",
             )
     for j in robot.joints:
-        if j.type in ("revolute", "continuous", "prismatic"):
+        if j.type in ONE_DOF:
             from ...frames import joint_state_feed
 
             feed = joint_state_feed(robot, j.name) or ""

@@ -6,11 +6,9 @@ from collections.abc import Iterator
 
 from ... import inertia
 from ...findings import Finding
-from ...model import Collision, Link, Robot, Visual
+from ...model import Collision, Link, MeshState, Robot, Visual
+from ...physics import PLACEHOLDER, dims, moving_links, welded_count
 from ..registry import at, rule
-from .density import PLACEHOLDER
-from .inertia import _moving_links, welded_count
-from .scale import dims
 
 
 @rule("GEOM001", "moving-link-without-collision", "warning")
@@ -22,7 +20,7 @@ def moving_link_without_collision(robot: Robot) -> Iterator[Finding]:
     Planners and simulators see through it: the arm can be planned straight through the
     part you can see.
     """
-    moving = _moving_links(robot)
+    moving = moving_links(robot)
     colliding = welded_count(robot, lambda other: other.collisions)
     for lk in robot.links:
         collides = colliding.get(lk.name, 0) > 0
@@ -63,11 +61,11 @@ def collision_visual_size_mismatch(robot: Robot) -> Iterator[Finding]:
             )
 
 
-def _meshes(robot: Robot, state: str) -> Iterator[tuple[Link, Visual | Collision, str]]:
+def _meshes(robot: Robot, state: MeshState) -> Iterator[tuple[Link, Visual | Collision, str]]:
     """(link, shape, filename) for every mesh the reader resolved to ``state``
     (ok | missing | escapes | unresolved; see audit/inputs.mesh_status)."""
-    status = robot.extras.get("mesh_status")
-    if not isinstance(status, dict):
+    status = dict(robot.mesh_status)
+    if not status:
         return
     for lk in robot.links:
         for shape in lk.shapes():

@@ -2,49 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 
 import numpy as np
 
 from ...extent import half_trace_by_span, moment_by_shapes, robot_span
 from ...findings import Finding, Severity
 from ...model import Link, Robot
+from ...physics import moving_links, own_bodies, welded_count
 from ..registry import at, rule
-
-
-def _moving_links(robot: Robot) -> set[str]:
-    """Links that some non-fixed joint moves (that joint's child and everything below)."""
-    moving: set[str] = set()
-    todo = [j.child for j in robot.joints if j.type != "fixed" and j.child]
-    while todo:
-        name = todo.pop()
-        if name in moving:
-            continue  # also ends cycles
-        moving.add(name)
-        todo += [j.child for j in robot.child_joints(name) if j.child]
-    return moving
-
-
-def welded_count(robot: Robot, has: Callable[[Link], object]) -> dict[str, int]:
-    """Per link name: how many links of its rigid body (welded by fixed joints) satisfy ``has``.
-
-    Each body is visited once, so 10,000 welded links cost linear time, not a scan of the
-    whole body per link."""
-    counts: dict[str, int] = {}
-    for lk in robot.links:
-        if lk.name in counts:
-            continue
-        body = robot.body_of(lk.name)
-        n = sum(1 for name in body if (other := robot.link(name)) is not None and has(other))
-        for name in body:
-            counts[name] = n
-    return counts
-
-
-def own_bodies(robot: Robot) -> set[str]:
-    """Links that are rigid bodies of their own: the child of a joint that moves. A link
-    welded on by a fixed joint is merged into its parent by simulators and by KDL."""
-    return {j.child for j in robot.joints if j.type != "fixed" and j.child}
 
 
 def _carries_geometry(robot: Robot, link: str) -> bool:
@@ -109,7 +75,7 @@ def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
     """
     bodies = own_bodies(robot)
     with_inertial = welded_count(robot, lambda other: other.inertial is not None)
-    for name in sorted(_moving_links(robot)):
+    for name in sorted(moving_links(robot)):
         lk = robot.link(name)
         weighed = with_inertial.get(name, 0) > 0
         if lk is not None and not weighed and _carries_geometry(robot, name):

@@ -8,7 +8,9 @@ from collections.abc import Iterator
 import numpy as np
 
 from ...findings import Finding
-from ...model import Joint, Robot
+from ...model import ONE_DOF, WITH_AXIS, WITH_LIMITS, Joint, Robot
+from ...naming import mirror_name
+from ...physics import static_load, subtree_loads
 from ..registry import at, rule
 
 
@@ -20,7 +22,7 @@ def zero_axis(robot: Robot) -> Iterator[Finding]:
     urdfdom accepts `<axis/>` as 0 0 0; the joint then never moves the child.
     """
     for j in robot.joints:
-        moving = j.type in ("revolute", "continuous", "prismatic", "planar")
+        moving = j.type in WITH_AXIS
         if moving and j.axis is not None and math.hypot(*j.axis) == 0:
             yield at("JOINT001", j, f"joint '{j.name}' has a zero axis", "write the unit axis, e.g. +y or [0, 1, 0]")
 
@@ -34,7 +36,7 @@ def axis_not_unit(robot: Robot) -> Iterator[Finding]:
     joint value moves the child by different amounts.
     """
     for j in robot.joints:
-        if j.axis is not None and j.type in ("revolute", "continuous", "prismatic", "planar"):
+        if j.axis is not None and j.type in WITH_AXIS:
             n = math.hypot(*j.axis)
             if n > 0 and abs(n - 1) > 1e-6:
                 yield at(
@@ -54,7 +56,7 @@ def moving_joint_without_limit(robot: Robot) -> Iterator[Finding]:
     joint_state_publisher raises; ros2_control cannot clamp commands.
     """
     for j in robot.joints:
-        if j.type in ("revolute", "prismatic"):
+        if j.type in WITH_LIMITS:
             if j.limit is None:
                 yield at(
                     "JOINT003", j, f"{j.type} joint '{j.name}' has no limit", "add lower, upper, effort and velocity"
@@ -77,7 +79,7 @@ def limits_out_of_order(robot: Robot) -> Iterator[Finding]:
     """
     for j in robot.joints:
         lm = j.limit
-        if j.type in ("revolute", "prismatic") and lm and lm.lower is not None and lm.upper is not None:
+        if j.type in WITH_LIMITS and lm and lm.lower is not None and lm.upper is not None:
             if lm.lower > lm.upper:
                 yield at(
                     "JOINT004",
@@ -184,59 +186,6 @@ def _mimic_problem(robot: Robot, j: Joint) -> str | None:
     return found.message if found is not None and found.joint is j else None
 
 
-G = 9.80665
-
-
-def _subtree_loads(robot: Robot, poses: dict[str, np.ndarray]) -> dict[str, tuple[float, np.ndarray]]:
-    """For every link: the mass of it and everything below it, and the sum of m * centre of
-    mass (root frame). One pass from the leaves up, so a 1000-link chain stays linear."""
-    from ...transforms import pose_matrix
-
-    own: dict[str, tuple[float, np.ndarray]] = {}
-    for name, pose in poses.items():
-        lk = robot.link(name)
-        if lk is not None and lk.inertial is not None and lk.inertial.mass and lk.inertial.mass > 0:
-            com = pose @ pose_matrix(lk.inertial.origin.xyz, lk.inertial.origin.rpy)
-            own[name] = (lk.inertial.mass, lk.inertial.mass * com[:3, 3])
-        else:
-            own[name] = (0.0, np.zeros(3))
-    order: list[str] = []
-    root = robot.root()
-    todo = [root] if root in poses else []
-    seen: set[str] = set()
-    while todo:
-        name = todo.pop()
-        if name is None or name in seen:
-            continue
-        seen.add(name)
-        order.append(name)
-        todo += [j.child for j in robot.child_joints(name) if j.child in poses]
-    total: dict[str, tuple[float, np.ndarray]] = {}
-    for name in reversed(order):  # children before parents
-        mass, moment = own[name]
-        for j in robot.child_joints(name):
-            if j.child in total:
-                cm, cmo = total[j.child]
-                mass, moment = mass + cm, moment + cmo
-        total[name] = (mass, moment)
-    return total
-
-
-def _max_abs_harmonic(a: float, b: float, lo: float, hi: float) -> float:
-    """max |a cos q + b sin q| over [lo, hi]: the ends and every stationary point inside."""
-    candidates = [lo, hi]
-    if hi - lo >= 2 * math.pi:
-        return math.hypot(a, b)
-    base = math.atan2(b, a)
-    k = math.floor((lo - base) / math.pi)
-    while base + k * math.pi <= hi:
-        q = base + k * math.pi
-        if q >= lo:
-            candidates.append(q)
-        k += 1
-    return max(abs(a * math.cos(q) + b * math.sin(q)) for q in candidates)
-
-
 @rule("JOINT008", "effort-below-gravity-load", "error")
 def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     """## What it does
@@ -254,10 +203,9 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     poses = forward(robot)
     if not poses:
         return
-    loads = _subtree_loads(robot, poses)
-    g = np.array([0.0, 0.0, -G])
+    loads = subtree_loads(robot, poses)
     for j in robot.joints:
-        if j.type not in ("revolute", "prismatic") or j.limit is None or j.limit.effort is None or j.child is None:
+        if j.type not in WITH_LIMITS or j.limit is None or j.limit.effort is None or j.child is None:
             continue
         if j.limit.effort == 0:
             continue  # JOINT005 reports a zero effort limit
@@ -269,22 +217,8 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
         mass, moment = loads[j.child]
         if mass <= 0:
             continue
-        frame = poses[j.child]  # the joint frame at zero: its axis is in child coordinates
-        axis = frame[:3, :3] @ (np.array(j.axis) / math.hypot(*j.axis))
-        if j.type == "prismatic":
-            need = abs(float(np.dot(mass * g, axis)))
-            what = f"{need:.4g} N along its axis"
-        else:
-            # turning the load by q about the axis: torque(q) = A cos q + B sin q (Rodrigues;
-            # the axis-parallel part of the lever gives none, since a x g is normal to a)
-            lever = moment - mass * frame[:3, 3]  # sum m (c - p)
-            k = np.cross(axis, g)
-            a = float(np.dot(lever, k))
-            b = float(np.dot(np.cross(axis, lever), k))
-            lo = j.limit.lower if j.limit.lower is not None else -math.pi
-            hi = j.limit.upper if j.limit.upper is not None else math.pi
-            need = _max_abs_harmonic(a, b, min(lo, hi), max(lo, hi))
-            what = f"{need:.4g} N*m"
+        need = static_load(j, poses[j.child], mass, moment)
+        what = f"{need:.4g} N along its axis" if j.type == "prismatic" else f"{need:.4g} N*m"
         if need > abs(j.limit.effort) * (1 + 1e-9) and need > 1e-6:
             yield at(
                 "JOINT008",
@@ -293,21 +227,6 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
                 f"effort limit is {abs(j.limit.effort):.4g}",
                 "check the effort limit (and the masses it carries)",
             )
-
-
-_SIDES = {"left": "right", "l": "r", "lf": "rf", "lh": "rh", "fl": "fr", "rl": "rr", "hl": "hr", "lb": "rb", "bl": "br"}
-_SIDES.update({v: k for k, v in list(_SIDES.items())})
-
-
-def mirror_name(name: str) -> str | None:
-    """The name with its left/right token swapped (``l_elbow`` -> ``r_elbow``, ``FL_hip`` -> ``FR_hip``)."""
-    parts = name.split("_")
-    for i, p in enumerate(parts):
-        swap = _SIDES.get(p.lower())
-        if swap is not None:
-            swap = swap.upper() if p.isupper() else swap.capitalize() if p[:1].isupper() else swap
-            return "_".join([*parts[:i], swap, *parts[i + 1 :]])
-    return None
 
 
 @rule("JOINT009", "mirror-axes-disagree", "warning")
@@ -326,7 +245,7 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
     for j in robot.joints:
         other_name = mirror_name(j.name)
         other = robot.joint(other_name) if other_name else None
-        if other is None or j.name in done or j.type not in ("revolute", "continuous", "prismatic"):
+        if other is None or j.name in done or j.type not in ONE_DOF:
             continue
         done |= {j.name, other.name}
         if other.type != j.type or j.axis is None or other.axis is None or not j.child or not other.child:

@@ -7,7 +7,8 @@ import statistics
 from collections.abc import Iterator
 
 from ...findings import Finding
-from ...model import Box, Cylinder, Geometry, Mesh, Robot, Sphere
+from ...model import Mesh, Robot
+from ...physics import dims
 from ..registry import at, rule
 
 FACTOR = 50.0  # ×1000 mistakes land far beyond this; real designs stay far below it
@@ -20,16 +21,6 @@ def robot_scale(robot: Robot) -> float:
     lengths = [math.hypot(*j.origin.xyz) for j in robot.joints]
     lengths = [x for x in lengths if x > 1e-4]
     return statistics.median(lengths) if lengths else 0.1
-
-
-def dims(g: Geometry | None) -> list[float]:
-    if isinstance(g, Box):
-        return list(g.size)
-    if isinstance(g, Cylinder):
-        return [2 * g.radius, g.length]
-    if isinstance(g, Sphere):
-        return [2 * g.radius]
-    return []
 
 
 @rule("UNIT011", "implausible-offset", "error")

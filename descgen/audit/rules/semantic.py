@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ...findings import Finding
-from ...model import Group, Robot
+from ...model import ONE_DOF, Group, Robot
 from ..registry import at, rule
 
 
@@ -185,8 +185,8 @@ def srdf_robot_name_mismatch(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     srdfdom only logs "Semantic description is not specified for the same robot".
     """
-    name = robot.extras.get("srdf_robot_name")
-    if isinstance(name, str) and robot.semantic is not None and name != robot.name:
+    name = robot.semantic.robot_name if robot.semantic is not None else None
+    if name is not None and robot.semantic is not None and name != robot.name:
         yield at(
             "SRDF005",
             robot.semantic,
@@ -212,7 +212,7 @@ def group_state_joint_outside_group(robot: Robot) -> Iterator[Finding]:
     for st in sem.states:
         if st.group not in names:
             continue
-        in_group = [j for j in robot.group_joints(st.group) if j.type in ("revolute", "continuous", "prismatic")]
+        in_group = [j for j in robot.group_joints(st.group) if j.type in ONE_DOF]
         # a mimic follower is set from its leader (RobotState::updateMimicJoints): it needs no value
         members = {j.name for j in in_group if j.mimic is None}
         followers = {j.name for j in in_group if j.mimic is not None}

@@ -1,0 +1,127 @@
+"""Option values that validate themselves: argparse ``type=`` callables.
+
+A bad value raises :class:`argparse.ArgumentTypeError` while the command line is parsed, so
+the command never starts and argparse exits 2. A value whose problem has a finding code (a
+duration with a wrong unit, a malformed ``NAME:=VALUE``) raises :class:`OptionError`, which
+carries the finding: the parser prints it like every other finding (``<command line>:
+error[CODE]: message`` and a hint), so the codes and messages stay those the README
+documents. Durations go through the spec's quantity parser (``units.duration``).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from pathlib import Path
+
+from . import units
+from .findings import Finding, Where
+
+COMMAND_LINE = Where("<command line>")
+
+
+class OptionError(argparse.ArgumentTypeError):
+    """A bad option value with a finding code."""
+
+    def __init__(self, code: str, message: str, hint: str, where: Where = COMMAND_LINE) -> None:
+        super().__init__(message)
+        self.finding = Finding(code, "error", message, hint, "option", where)
+
+
+Bounds = Callable[[], tuple[float, float]]  # (low, high) in seconds, looked up when a value is given
+
+
+class Duration:
+    """A time option in seconds within the command's bounds. ``bare_seconds`` reads a plain
+    number as seconds, for options documented in seconds before they took units."""
+
+    def __init__(self, option: str, bounds: Bounds, bare_seconds: bool = True) -> None:
+        self.option = option
+        self.bounds = bounds  # a function, so that the command's module is imported only when needed
+        self.bare_seconds = bare_seconds
+        self.__name__ = "duration"  # argparse names the type in its own messages
+
+    def __call__(self, text: str) -> float:
+        low, high = self.bounds()
+        try:
+            return units.duration(text, low, high, bare_seconds=self.bare_seconds)
+        except units.QuantityError as exc:
+            raise OptionError(exc.code, f"{self.option}: {exc.message}", exc.hint) from None
+
+
+class Nanoseconds(Duration):
+    """A wait or an age in integer nanoseconds (what the tf buffer works in); units required."""
+
+    def __init__(self, option: str, bounds: Bounds) -> None:
+        super().__init__(option, bounds, bare_seconds=False)
+
+    def __call__(self, text: str) -> int:
+        return round(super().__call__(text) * 1e9)
+
+
+def xacro_arg(text: str) -> tuple[str, str]:
+    """``--xacro-arg NAME:=VALUE`` as (name, value)."""
+    name, sep, value = text.partition(":=")
+    if not sep or not name:
+        raise OptionError(
+            "READ005", f"--xacro-arg '{text}' is not name:=value", "write e.g. --xacro-arg use_gripper:=true"
+        )
+    return name, value
+
+
+def plant_fault(text: str) -> tuple[str, str]:
+    """``--plant-fault JOINT:=KIND`` as (joint, kind); whether the joint exists is checked
+    against the robot (``control.system.plant_faults``)."""
+    from .control.system import FAULT_KINDS
+
+    joint, sep, kind = text.partition(":=")
+    if not sep or not joint:
+        raise OptionError(
+            "CTRL032", f"--plant-fault {text!a} is not JOINT:=KIND", "write e.g. --plant-fault elbow_joint:=stuck"
+        )
+    if kind not in FAULT_KINDS:
+        raise OptionError(
+            "CTRL032", f"--plant-fault {text!a}: unknown fault kind {kind!a}", f"use one of {', '.join(FAULT_KINDS)}"
+        )
+    return joint, kind
+
+
+def path(text: str) -> Path:
+    """A file or folder named on the command line; empty text is no path (``Path("")`` would
+    quietly be the current folder)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty path names nothing")
+    return Path(text)
+
+
+def templates_folder(text: str) -> Path:
+    """``--templates DIR``: a folder of template overrides."""
+    folder = Path(text)
+    if not folder.is_dir():
+        raise OptionError(
+            "GEN010", f"--templates {folder} is not a folder", "name a folder of template overrides", Where(str(folder))
+        )
+    return folder
+
+
+def folder(text: str) -> Path:
+    """A folder that must exist (``--package-path``): a typo would otherwise be ignored and
+    every ``$(find)`` or ``package://`` under it reported as missing."""
+    given = Path(text)
+    if not given.is_dir():
+        what = "does not exist" if not given.exists() else "is not a folder"
+        raise argparse.ArgumentTypeError(f"{text!a} {what}")
+    return given
+
+
+def rule_code(text: str) -> str:
+    """``descgen rules CODE``: a code of the catalogue, in any case."""
+    from . import report
+    from .codes import explain
+
+    code = text.strip().upper()
+    if explain(code) is None:
+        raise OptionError(
+            "RULE001", f"no code {report.printable(text, 80)} in the catalogue", "run descgen rules for the list"
+        )
+    return code

@@ -1,0 +1,142 @@
+"""A control run's evidence on disk: lifecycle.jsonl/.md, interfaces.md,
+desired_vs_measured.csv, a plot per joint, an MCAP recording and verdict.json."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+from typing import Any
+
+from ..findings import Finding, InputError, Where
+from ..model import Robot
+from .verdict import Outcome
+
+
+def write_evidence(out: Outcome, folder: Path, robot: Robot, plots: bool = True) -> list[str]:
+    """lifecycle.jsonl/.md, interfaces.md, desired_vs_measured.csv, plots, MCAP, verdict.json.
+    ``plots=False``: all but the plots (``descgen check`` compares their data, not their bytes)."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:  # a file in the way, no permission
+        raise InputError(
+            [
+                Finding(
+                    "CTRL034",
+                    "error",
+                    f"cannot create the evidence folder {folder}: {exc.strerror or exc}",
+                    "choose another --out",
+                    "option",
+                    Where(str(folder)),
+                )
+            ]
+        ) from None
+    cm = out.cm
+    written = []
+
+    def put(name: str, text: str) -> None:
+        (folder / name).write_text(text, encoding="utf-8")
+        written.append(name)
+
+    put("lifecycle.jsonl", "".join(json.dumps(e, sort_keys=True) + "\n" for e in cm.trace.events))
+    lines = [
+        "# ros2_control lifecycle and claims, in order",
+        "",
+        "| t (s) | event | who | detail |",
+        "|---|---|---|---|",
+    ]
+    for e in cm.trace.events:
+        who = e.get("name") or e.get("controller") or e.get("joint", "")
+        detail = ", ".join(f"{k}={v}" for k, v in e.items() if k not in ("t", "event", "name", "controller", "kind"))
+        lines.append(f"| {e['t']:.2f} | {e['event']} | {who} | {detail} |")
+    put("lifecycle.md", "\n".join(lines) + "\n")
+    cmds = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.commands]
+    states = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.states]
+    text = [
+        "# Interfaces and controllers (as `ros2 control list_hardware_interfaces` / `list_controllers`)",
+        "",
+        "```",
+        "command interfaces",
+    ]
+    text += [f"\t{k} [available] [{'claimed' if k in cm.resources.owner else 'unclaimed'}]" for k in cmds]
+    text += ["state interfaces"] + [f"\t{k}" for k in states] + ["```", "", "```"]
+    text += [f"{n:<26} {c.type:<55} {c.state}" for n, c in cm.controllers.items()] + ["```", ""]
+    put("interfaces.md", "\n".join(text))
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["time_s", "joint", "desired", "commanded", "measured", "error"])
+    for t, name, d, c, m in out.rows:
+        w.writerow([f"{t:.3f}", name, f"{d:.9g}", f"{c:.9g}", f"{m:.9g}", f"{d - m:.9g}"])
+    put("desired_vs_measured.csv", buf.getvalue())
+    put("verdict.json", json.dumps(out.verdict(), indent=2) + "\n")
+    if plots:
+        written += _plots(out, folder)
+    written += _recording(out, folder)
+    return written
+
+
+def _plots(out: Outcome, folder: Path) -> list[str]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return []
+    names = []
+    for joint in out.tracking:
+        rows = [r for r in out.rows if r[1] == joint]
+        fig, ax = plt.subplots(figsize=(7, 3.2))
+        ax.plot([r[0] for r in rows], [r[2] for r in rows], label="desired (controller)")
+        ax.plot([r[0] for r in rows], [r[3] for r in rows], "--", label="commanded (after limits)")
+        ax.plot([r[0] for r in rows], [r[4] for r in rows], label="measured (state interface)")
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("position (SI: m or rad)")
+        ax.set_title(f"{joint}: " + ("state echoes the command (mock)" if out.echo else "simulated plant"))
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        name = f"{joint}.png"
+        fig.savefig(folder / name, dpi=80)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
+def _recording(out: Outcome, folder: Path) -> list[str]:
+    import shutil
+
+    import numpy as np
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    types: dict[str, Any] = dict(ts.types)
+    js, header, time_ = (
+        types["sensor_msgs/msg/JointState"],
+        types["std_msgs/msg/Header"],
+        types["builtin_interfaces/msg/Time"],
+    )
+    bag = folder / "control_run"
+    shutil.rmtree(bag, ignore_errors=True)
+    start = 1_700_000_000 * 1_000_000_000
+    by_time: dict[float, list[tuple[str, float, float]]] = {}
+    for t, name, d, _, m in out.rows:
+        by_time.setdefault(t, []).append((name, d, m))
+    with Writer(bag, version=9, storage_plugin=StoragePlugin.MCAP) as w:
+        measured = w.add_connection("/joint_states", "sensor_msgs/msg/JointState", typestore=ts)
+        desired = w.add_connection("/arm_controller/desired_state", "sensor_msgs/msg/JointState", typestore=ts)
+        for t, entries in sorted(by_time.items()):
+            ns = start + round(t * 1e9)
+            stamp = time_(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+            names = [e[0] for e in entries]
+            for conn, values in ((measured, [e[2] for e in entries]), (desired, [e[1] for e in entries])):
+                msg = js(
+                    header=header(stamp=stamp, frame_id=""),
+                    name=names,
+                    position=np.array(values),
+                    velocity=np.zeros(0),
+                    effort=np.zeros(0),
+                )
+                w.write(conn, ns, ts.serialize_cdr(msg, "sensor_msgs/msg/JointState"))
+    return ["control_run/"]

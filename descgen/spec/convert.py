@@ -1,0 +1,73 @@
+"""Written quantities whose kind depends on context -> SI, at their YAML position.
+
+A joint limit is an angle or a length depending on the joint type, a pose value depends on
+the joint it moves. They are converted here with the same ``units.to_si`` as the schema;
+a value that cannot be converted becomes a finding at its YAML node and a stand-in.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from .. import units
+from ..findings import Finding, Where
+from ..yamlsource import Document, Path_
+from .quantity import Written, convert
+
+# What a joint's limit, value and gains are, by joint type: (value kind, plausibility role).
+POSITION = {
+    "revolute": ("angle", "joint_angle"),
+    "continuous": ("angle", "joint_angle"),
+    "prismatic": ("length", "joint_travel"),
+}
+EFFORT = {"prismatic": ("force", "force")}
+VELOCITY = {"prismatic": ("linear_velocity", "linear_velocity")}
+DAMPING = {"prismatic": "linear_damping"}
+FRICTION = {"prismatic": "force"}
+
+
+@dataclass
+class Converter:
+    """One build's conversions and the findings they (and the other build steps) make."""
+
+    doc: Document
+    ranges: dict[str, units.Range]
+    findings: list[Finding] = field(default_factory=list)
+    joint_types: dict[str, str] = field(default_factory=dict)  # set once every joint is built
+
+    def where(self, path: Path_) -> Where:
+        return self.doc.where(path)
+
+    def error(self, code: str, message: str, hint: str, subject: str, where: Where) -> None:
+        self.findings.append(Finding(code, "error", message, hint, subject, where))
+
+    def si(
+        self, w: Written | None, kind: str, role: str | None, path: Path_, default: float | None = None
+    ) -> float | None:
+        if w is None:
+            return default
+        try:
+            return convert(w, kind, role, self.ranges).si
+        except Exception as exc:  # PydanticCustomError from convert/check_range
+            ctx: dict[str, Any] = getattr(exc, "context", None) or {}
+            code = getattr(exc, "type", "UNIT002")
+            self.error(
+                code, str(ctx.get("message", exc)), str(ctx.get("hint", "")), ".".join(map(str, path)), self.where(path)
+            )
+            return default
+
+    def joint_value(self, joint: str, w: Written, path: Path_) -> float:
+        """A value of ``joint`` (a pose, an initial position) in the joint's own unit."""
+        jt = self.joint_types.get(joint)
+        if jt in POSITION:
+            kind, role = POSITION[jt]
+            return self.si(w, kind, role, path, math.nan) or 0.0
+        # unknown or non-1-DOF joint: a rule reports it; keep the value if it reads as anything
+        for kind in ("angle", "length"):
+            try:
+                return units.to_si(w.value, kind)
+            except units.QuantityError:
+                continue
+        return math.nan

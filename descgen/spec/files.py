@@ -1,0 +1,34 @@
+"""Which spec files a command was given: a folder stands for the ``*.yaml`` specs in it."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+from ..findings import Finding, InputError, Where
+
+
+def expand_specs(paths: Sequence[str]) -> list[str]:
+    """Spec files, with a folder standing for the *.yaml files in it."""
+    out: list[str] = []
+    for p in paths:
+        path = Path(p)
+        if path.is_dir():
+            found = sorted(str(x) for x in (*path.glob("*.yaml"), *path.glob("*.yml")))
+            if not found:
+                raise InputError(
+                    [
+                        Finding(
+                            "YAML002",
+                            "error",
+                            f"{p} holds no .yaml spec",
+                            "name a spec file or a folder of specs",
+                            "file",
+                            Where(p),
+                        )
+                    ]
+                )
+            out += found
+        else:
+            out.append(p)
+    return out

@@ -1,0 +1,27 @@
+"""Spec origins and shapes -> model poses and geometry (already SI after validation)."""
+
+from __future__ import annotations
+
+from .. import model as m
+from . import models as s
+
+
+def pose(o: s.Origin | None) -> m.Pose:
+    if o is None:
+        return m.Pose()
+    xyz = (o.xyz[0].si, o.xyz[1].si, o.xyz[2].si)
+    rpy = (o.rpy[0].si, o.rpy[1].si, o.rpy[2].si)
+    return m.Pose(xyz, rpy)
+
+
+def geometry(g: s.GeometrySpec) -> m.Geometry:
+    if g.box is not None:
+        x, y, z = g.box.size
+        return m.Box((x.si, y.si, z.si))
+    if g.cylinder is not None:
+        return m.Cylinder(g.cylinder.r, g.cylinder.length.si)
+    if g.sphere is not None:
+        return m.Sphere(g.sphere.r)
+    assert g.mesh is not None  # GeometrySpec guarantees exactly one
+    sx, sy, sz = g.mesh.scale
+    return m.Mesh(g.mesh.filename, (float(sx), float(sy), float(sz)))

@@ -1,0 +1,81 @@
+"""Spec rules that need the whole validated spec and no model: every measured value cites a
+source (SPEC010, with ``require_sources: true``), and MoveIt's keys are unique (SPEC024).
+The model's own rules run later, in ``descgen.audit``."""
+
+from __future__ import annotations
+
+from pydantic import BaseModel
+
+from ..findings import Finding
+from ..yamlsource import Document, Path_
+from . import models as s
+from .quantity import Measured, Written
+
+
+def duplicate_semantics(doc: Document, sem: s.SemanticSpec) -> list[Finding]:
+    """SPEC024: MoveIt keys SRDF elements by name (a group state by name and group, a
+    disabled pair by its links), so a second one with the same key would silently
+    replace the first; refuse it at the second."""
+    keyed: list[tuple[str, list[tuple[object, str]]]] = [
+        ("groups", [(g.name, f"group '{g.name}'") for g in sem.groups]),
+        ("group_states", [((g.name, g.group), f"group state '{g.name}' of '{g.group}'") for g in sem.group_states]),
+        ("end_effectors", [(e.name, f"end effector '{e.name}'") for e in sem.end_effectors]),
+        ("virtual_joints", [(v.name, f"virtual joint '{v.name}'") for v in sem.virtual_joints]),
+        ("passive_joints", [(n, f"passive joint '{n}'") for n in sem.passive_joints]),
+        (
+            "disable_collisions",
+            [(frozenset((d.link1, d.link2)), f"disabled pair {d.link1}/{d.link2}") for d in sem.disable_collisions],
+        ),
+    ]
+    out: list[Finding] = []
+    for section, entries in keyed:
+        seen: set[object] = set()
+        for i, (key, what) in enumerate(entries):
+            if key in seen:
+                out.append(
+                    Finding(
+                        "SPEC024",
+                        "error",
+                        f"{what} is declared twice in semantic.{section}",
+                        "remove or rename the second one (the SRDF keeps one per name)",
+                        f"semantic.{section}.{i}",
+                        doc.where(("semantic", section, i)),
+                    )
+                )
+            seen.add(key)
+    return out
+
+
+def missing_sources(doc: Document, spec: s.RobotSpec) -> list[Finding]:
+    """``require_sources: true``: every written quantity needs a source, on itself or on
+    an element that contains it."""
+    out: list[Finding] = []
+
+    def walk(obj: object, path: Path_, covered: bool) -> None:
+        if isinstance(obj, Measured | Written):
+            if not covered and not obj.source and path in doc.value_marks:
+                out.append(
+                    Finding(
+                        "SPEC010",
+                        "error",
+                        f'measured value "{getattr(obj, "text", obj)}" has no source',
+                        "add source: <row ID> to the value or to its element, or set require_sources: false",
+                        ".".join(map(str, path)),
+                        doc.where(path),
+                    )
+                )
+        elif isinstance(obj, BaseModel):
+            here = covered or bool(getattr(obj, "source", None))
+            for name, info in type(obj).model_fields.items():
+                walk(getattr(obj, name), (*path, info.alias or name), here)
+        elif isinstance(obj, list | tuple):
+            for i, item in enumerate(obj):
+                walk(item, (*path, i), covered)
+        elif isinstance(obj, dict):
+            for k, item in obj.items():
+                walk(item, (*path, k), covered)
+
+    for name, info in type(spec).model_fields.items():
+        if name != "plausibility":  # bounds chosen for checking, not measurements
+            walk(getattr(spec, name), (info.alias or name,), False)
+    return out
