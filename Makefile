@@ -17,9 +17,11 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 demo: setup
+	$(PY) -m pip install --quiet -e '.[sim]'
 	$(BIN)/descgen validate $(SPEC)
 	$(BIN)/descgen generate $(SPEC)
 	$(BIN)/descgen check $(SPEC)
+	$(BIN)/descgen simulate $(SPEC) --pose ready
 
 lint: setup
 	$(BIN)/ruff check descgen tests benchmarks

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from . import __version__, cli_format, report
 from . import cli_types as types
-from .findings import Finding, InputError, summary
+from .findings import Finding, InputError, Where, summary
 
 if TYPE_CHECKING:
     from .audit.inputs import Options
@@ -139,6 +139,40 @@ def _cmd_audit(args: argparse.Namespace) -> int:
     return exit_code(found, input_error=unusable, strict=args.strict)
 
 
+def _cmd_import(args: argparse.Namespace) -> int:
+    from .importer.run import ImportOptions, import_description
+
+    out: Path | None = args.output
+    if out is not None and out.exists() and not args.force:
+        raise InputError(
+            [
+                Finding(
+                    "IMP007",
+                    "error",
+                    f"{out} exists; import does not overwrite a spec",
+                    "choose another -o file, or pass --force to replace it",
+                    "option",
+                    Where(str(out)),
+                )
+            ]
+        )
+    opts = ImportOptions(_description_options(args), args.units, str(out) if out else "imported.yaml")
+    result = import_description(Path(args.path), opts)
+    imp = result.imported
+    sys.stderr.write(report.text(imp.audit + imp.report + result.invalid + imp.differences))
+    if imp.differences:
+        print(f"import: round trip differs at {len(imp.differences)} place(s); nothing written", file=sys.stderr)
+        return EXIT_FAILED
+    if out is None:
+        sys.stdout.write(imp.spec_text)
+    else:
+        from .importer.run import write_spec
+
+        write_spec(out, imp.spec_text)
+    print(cli_format.import_summary(result, str(out) if out else "stdout"), file=sys.stderr)
+    return EXIT_OK
+
+
 def _cmd_faults(args: argparse.Namespace) -> int:
     from .audit.inputs import load_description
     from .faults import plant_all
@@ -210,6 +244,19 @@ def _cmd_control(args: argparse.Namespace) -> int:
     return EXIT_OK if verdict["ok"] else EXIT_FAILED
 
 
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from .simulate import Settings, simulate_description
+
+    settings = Settings(seconds=args.seconds, pose=args.pose, base=args.base)
+    outcome = simulate_description(Path(args.path), _description_options(args), settings)
+    if args.format == "json":
+        sys.stdout.write(report.as_json(outcome.findings, simulate=outcome.report))
+    else:
+        sys.stdout.write(cli_format.simulate_text(args.path, outcome.report))
+        sys.stderr.write(report.text(outcome.findings))
+    return exit_code(outcome.findings)
+
+
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .spec.schema import json_schema
 
@@ -246,6 +293,12 @@ def _control_bounds() -> tuple[float, float]:
     from .control.trajectory import MAX_DURATION_S, MIN_DURATION_S
 
     return MIN_DURATION_S, MAX_DURATION_S
+
+
+def _simulate_bounds() -> tuple[float, float]:
+    from .simulate import MAX_SECONDS, MIN_SECONDS
+
+    return MIN_SECONDS, MAX_SECONDS
 
 
 def _wait_bounds() -> tuple[float, float]:
@@ -335,6 +388,16 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--strict", action="store_true", help="warnings count as errors")
     a.set_defaults(fn=_cmd_audit)
 
+    im = sub.add_parser("import", help="a URDF or Xacro (+ SRDF) -> a spec with sources, proven by a round trip")
+    im.add_argument("path")
+    description_options(im)
+    im.add_argument("-o", "--output", type=types.path, help="spec file to write (default: print the spec)")
+    im.add_argument(
+        "--units", type=types.import_units, default=types.import_units("mm,deg,kg"), help="mm,deg,kg (default) or si"
+    )
+    im.add_argument("--force", action="store_true", help="replace an existing -o file")
+    im.set_defaults(fn=_cmd_import)
+
     f = sub.add_parser("faults", help="plant each fault of the catalogue in a copy and audit it")
     f.add_argument("path")
     description_options(f)
@@ -402,6 +465,25 @@ def parser() -> argparse.ArgumentParser:
     )
     co.add_argument("--out", type=types.path, help="folder for the evidence (default: the package's evidence/)")
     co.set_defaults(fn=_cmd_control)
+
+    si = sub.add_parser("simulate", help="compile the robot with MuJoCo and hold it at a pose under gravity")
+    si.add_argument("path", help="spec, URDF or Xacro")
+    si.add_argument(
+        "--seconds",
+        default="2 s",
+        type=types.Duration("--seconds", _simulate_bounds),
+        help="simulated time of the gravity run, e.g. '2 s' (a bare number is seconds; at most 10 s)",
+    )
+    si.add_argument("--pose", help="known pose or SRDF group state to hold (default: every joint at zero)")
+    si.add_argument(
+        "--base",
+        choices=("fixed", "floor"),
+        help="fixed to the world, or free on a ground plane (default: floor for a robot whose SRDF virtual "
+        "joint is planar or floating or whose root link is base_footprint)",
+    )
+    description_options(si)
+    si.add_argument("--format", choices=("text", "json"), default="text")
+    si.set_defaults(fn=_cmd_simulate)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

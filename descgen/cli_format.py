@@ -174,3 +174,31 @@ def control_text(written: Sequence[str], folder: object, verdict: dict[str, Any]
             f"  rejected {e['joint']}/{e['interface']} = {e['value']:.6g} beyond {e['limit']:.6g} at {e['time']:.2f} s"
         )
     return "".join(line + "\n" for line in lines)
+
+
+def import_summary(result: object, written_to: str) -> str:
+    """One line: what descgen import wrote and whether the round trip proved it."""
+    imp = result.imported  # type: ignore[attr-defined]
+    kept = len(imp.kept)
+    verdict = "round trip proven" if result.proven else "round trip not run: the spec fails validate (see warnings)"  # type: ignore[attr-defined]
+    return (
+        f"imported {imp.robot.name}: {len(imp.robot.links)} links, {len(imp.robot.joints)} joints, "
+        f"{kept} pass-through element(s) -> {written_to}; {verdict}"
+    )
+
+
+def simulate_text(path: str, rep: dict[str, Any]) -> str:
+    """``descgen simulate``: the run's set-up, then each held joint's drift from the pose."""
+    head = f"{printable(path)}: MuJoCo, base {rep['base']}, pose {printable(rep['pose'])}, {rep['seconds']:g} s"
+    if not rep.get("compiled"):
+        return head + ": MuJoCo refused the model (see the errors)\n"
+    lines = [f"{head}: {rep['bodies']} bodies, {rep['steps']} steps in {rep['wall_s']:.3f} s wall"]
+    for s in rep["servos"]:
+        unit = "rad" if s["rotating"] else "m"
+        lines.append(
+            f"  {printable(s['joint']):<24} drift {rep['drift'][s['joint']]:.3g} {unit} "
+            f"(tolerance {s['tolerance']:g}), kp {s['kp']:.4g}, kv {s['kv']:.4g}"
+        )
+    if rep["base"] == "floor":
+        lines.append(f"  free base: largest tilt {rep['tilt_deg']:.3g} deg")
+    return "".join(line + "\n" for line in lines)

@@ -125,3 +125,13 @@ def rule_code(text: str) -> str:
             "RULE001", f"no code {report.printable(text, 80)} in the catalogue", "run descgen rules for the list"
         )
     return code
+
+
+def import_units(text: str) -> object:
+    """``--units`` of import: ``mm,deg,kg`` (any subset, any order) or ``si``."""
+    from .importer.quantity import Units
+
+    try:
+        return Units.parse(text)
+    except ValueError as exc:
+        raise OptionError("IMP008", f"--units: {exc}", "write e.g. --units mm,deg,kg or --units si") from None

@@ -29,6 +29,8 @@ GROUPS: dict[str, str] = {
     "generate": "generate and check (the proofs of the written package)",
     "control": "descgen control (trajectory, options, the ros2_control model)",
     "recording": "recordings (tf-audit, tf-scenario)",
+    "simulate": "descgen simulate (MuJoCo as a consumer)",
+    "import": "descgen import (a URDF or Xacro becomes a spec)",
     "command": "the command line",
 }
 
@@ -271,6 +273,105 @@ register(
       and license.""",
     ),
     C(
+        "SPEC080",
+        "variants-without-mock-default",
+        "error",
+        "spec",
+        "ros2_control.hardware declares variants but its own plugin is not mock_components/GenericSystem.",
+        """With variants, hardware.plugin/params are the `mock` variant, the default of the generated
+      Xacro's `hardware` argument and the hardware of the generated URDF. A vendor plugin there would
+      make the default description drive the real robot. Put the vendor plugin under variants.real.""",
+    ),
+    C(
+        "SPEC081",
+        "gazebo-variant-plugin",
+        "error",
+        "spec",
+        "The gazebo hardware variant names a plugin other than gz_ros2_control/GazeboSimSystem.",
+        """Jazzy pairs with Gazebo Harmonic, whose ros2_control plugin is gz_ros2_control/GazeboSimSystem
+      (docs/ros2_control_jazzy.md §6); gazebo_ros2_control (Gazebo Classic) is not released for
+      Jazzy. Leave the plugin out (it defaults to GazeboSimSystem) or write it.""",
+    ),
+    C(
+        "SPEC082",
+        "real-variant-plugin",
+        "error",
+        "spec",
+        "The real hardware variant has no plugin, or names the mock or Gazebo plugin.",
+        """hardware:=real must load the robot's driver; a mock or simulation plugin there would make a
+      launch on the robot silently move nothing. Name the vendor's hardware plugin.""",
+    ),
+    C(
+        "SPEC083",
+        "control-sensor-frame-unknown",
+        "error",
+        "spec",
+        "A ros2_control sensor's frame is not a link of the robot.",
+        """The frame is written as the sensor's frame_id parameter, and the broadcasters stamp their
+      messages with it; tf cannot place data in a frame that does not exist. Name a link (a sensor
+      link is <name>_link).""",
+    ),
+    C(
+        "SPEC084",
+        "control-interface-repeated",
+        "error",
+        "spec",
+        "A ros2_control sensor or gpio lists the same interface twice, or two components share a name.",
+        """ros2_control exports `<component>/<interface>` once; the resource manager refuses a second
+      interface with the same full name, so the hardware would not load. Remove the duplicate.""",
+    ),
+    C(
+        "SPEC085",
+        "control-component-in-two-blocks",
+        "error",
+        "spec",
+        "A joint, sensor or gpio is in two ros2_control blocks.",
+        """Every block's interfaces go into one map of the resource manager, keyed `<component>/<interface>`;
+      a second one with the same key throws "ResourceStorage: Tried to insert ... with already existing
+      key" (ros2_control jazzy, hardware_interface/src/resource_manager.cpp), so no hardware loads.
+      Keep each component in one block.""",
+    ),
+    C(
+        "SPEC086",
+        "control-block-name-repeated",
+        "error",
+        "spec",
+        "Two ros2_control blocks have the same name.",
+        """The resource manager keys hardware components by name and stops loading at a repeated one:
+      "Hardware name %s is duplicated. Please provide a unique 'name' in the URDF."
+      (hardware_interface/src/resource_manager.cpp, load_and_initialize_components).""",
+    ),
+    C(
+        "SPEC087",
+        "sensor-block-with-commands",
+        "error",
+        "spec",
+        "A ros2_control block of type sensor declares command interfaces.",
+        """A sensor component exports no command interfaces (hardware_interface/sensor_interface.hpp,
+      on_export_command_interfaces returns {}) and is never written, so the commands would not exist
+      and every controller claiming one fails to activate. Make the block a system or drop the commands.""",
+    ),
+    C(
+        "SPEC088",
+        "system-plugin-in-non-system-block",
+        "error",
+        "spec",
+        "An actuator or sensor block uses mock_components/GenericSystem or gz_ros2_control/GazeboSimSystem.",
+        """Both are registered with pluginlib only as hardware_interface::SystemInterface
+      (hardware_interface/mock_components_plugin_description.xml; gz_ros2_control's GazeboSimSystemInterface),
+      so the resource manager cannot load them for an actuator or sensor component. Make the block a system.""",
+    ),
+    C(
+        "SPEC089",
+        "control-block-variants-differ",
+        "error",
+        "spec",
+        "A further ros2_control block declares other hardware variants than the first block.",
+        """One Xacro argument, hardware:=mock|gazebo|real, selects the hardware of every block; a block
+      without the selected variant would keep a mock (or no) plugin on the real robot or in Gazebo.
+      Declare the same variants under every block's hardware.""",
+    ),
+    C(
         "SPEC050",
         "invalid-name",
         "error",
@@ -279,6 +380,65 @@ register(
         """Link, joint, frame, controller and package names reach URDF, tf, ros2_control and file names;
       ROS tools refuse or misread names with spaces, dashes or leading digits. Until issue 10 this
       was reported as NAME001, which is the duplicate-link-name rule. Rename it as the hint says.""",
+    ),
+    C(
+        "SPEC060",
+        "mesh-not-found",
+        "error",
+        "spec",
+        "A mesh the spec references does not exist (relative to the spec, or in the package named by package://).",
+        """generate would write a package whose URDF names a file that is not there: RViz shows nothing
+      and collision checking loses the part, while every other check passes. Fix the path, or add
+      the file beside the spec (descgen/mesh_paths.py).""",
+    ),
+    C(
+        "SPEC061",
+        "mesh-path-escapes",
+        "error",
+        "spec",
+        "A mesh path leaves the spec's folder or its package (.., an absolute path, file://, a link out).",
+        """A spec is someone else's data: it may name only files beside it or in the packages it lists,
+      or validating it could read (and generate copy) any file of the machine, like /etc/passwd
+      (docs/security.md). Keep the mesh in the spec's folder, or name it with package://.""",
+    ),
+    C(
+        "SPEC062",
+        "mesh-package-unknown",
+        "error",
+        "spec",
+        "A package:// mesh names a package no folder of the spec's package_paths holds (or the generated one).",
+        """The package must be found to check the file and to depend on it (exec_depend). Record the
+      folder holding the package under package_paths: (relative to the spec); for the robot's own
+      meshes, write a path relative to the spec, which generate copies into the package.""",
+    ),
+    C(
+        "SPEC063",
+        "mesh-not-a-file",
+        "error",
+        "spec",
+        "A mesh path names a folder, FIFO or device, or a file larger than the mesh limit (64 MiB).",
+        """Meshes are read and copied; a FIFO would block, a device never ends, and a huge file is not a
+      robot part. Name the mesh file itself.""",
+    ),
+    C(
+        "SPEC064",
+        "spec-folder-unusable",
+        "error",
+        "spec",
+        "A package_paths or templates entry is absolute, leaves the project folder, or is not a folder.",
+        """Recorded folders make every command and every machine resolve the same files, so they are
+      relative to the spec; they stay inside the project (the folder holding specs/) so a spec
+      cannot point descgen at the rest of the machine.""",
+    ),
+    C(
+        "SPEC065",
+        "mesh-copy-clash",
+        "error",
+        "spec",
+        "Two different mesh files would be copied to the same place in the package.",
+        """A path relative to the spec is copied to meshes/<path> (a leading meshes/ is not doubled), so
+      meshes/a.stl and a.stl both land on meshes/a.stl and one would silently replace the other.
+      Move or rename one of them.""",
     ),
     C(
         "UNIT001",
@@ -334,9 +494,28 @@ register(
         "inertia-not-derivable",
         "error",
         "spec",
-        "inertial from: visual/collision, but the link has no such geometry, or it is a mesh.",
-        """descgen derives a tensor only from a box, cylinder or sphere; without one the link would get
-      no tensor. Add a primitive, or give the inertia explicitly (e.g. from CAD).""",
+        "inertial from: visual/collision, but the link has no such geometry.",
+        """descgen derives a tensor from a box, cylinder, sphere or watertight mesh (INER030, INER031);
+      without one the link would get no tensor. Add a shape, or give the inertia explicitly (e.g. from CAD).""",
+    ),
+    C(
+        "INER030",
+        "mesh-inertia-not-watertight",
+        "error",
+        "spec",
+        "inertial from: a mesh that is not watertight (open edges or inconsistent winding), or bounds no volume.",
+        """An open mesh bounds no solid, so its volume, centre of mass and tensor are meaningless numbers
+      (trimesh warns the same). Close the mesh in CAD (or export its convex hull as the collision), or give
+      the inertia explicitly.""",
+    ),
+    C(
+        "INER031",
+        "mesh-inertia-unreadable",
+        "error",
+        "spec",
+        "inertial from: a mesh whose file cannot be found or read (format, size, triangle count, parser error).",
+        """Without the mesh there is nothing to integrate; a guessed tensor would be worse than none.
+      Fix the path (relative to the spec), convert the file to STL, OBJ or DAE, or give the inertia explicitly.""",
     ),
     C(
         "SRDF010",
@@ -642,6 +821,26 @@ register(
       controllers template.""",
     ),
     C(
+        "GEN060",
+        "mesh-copy-stale",
+        "error",
+        "generate",
+        "A mesh copied into the package differs from its source beside the spec (either was edited).",
+        """Meshes are copied byte for byte, and binary files carry no header, so check compares each copy
+      with its source (and the package's meshes/meshes.sha256 records what was copied). Run descgen
+      generate and commit the result; change a mesh at its source, not in the package.""",
+    ),
+    C(
+        "GEN061",
+        "template-failed",
+        "error",
+        "generate",
+        "A template override does not parse or fails to render, or (named by the spec) reaches past the sandbox.",
+        """Templates recorded in a spec (templates:) are someone else's code and render in jinja2's
+      immutable sandbox, so they cannot walk from a value to Python internals; a refusal or a broken
+      override is reported at the template instead of a traceback. Fix the template.""",
+    ),
+    C(
         "GEN040",
         "symlink-in-package",
         "error",
@@ -750,6 +949,15 @@ register(
         "The generated package has no controllers file or no <ros2_control> block.",
         """control runs the generated files; without them there is nothing to run. Run descgen generate
       first (and point --package at its output).""",
+    ),
+    C(
+        "CTRL080",
+        "initial-position-given-twice",
+        "error",
+        "spec",
+        "A ros2_control joint's initial position is given twice (initial_position and a state initial_value).",
+        """Both become the position state interface's initial_value param; two values for one param
+      leave the reader to guess which one the hardware starts at. Keep one.""",
     ),
     C(
         "CTRL022",
@@ -911,5 +1119,272 @@ register(
         """calibrated: holds measured values (wheel_separation, wheel_radius of DiffDriveController)
       that are compared with what the URDF implies and written to the controllers file; any other key
       would be silently unused, and a key in both places has two values. Keep only calibrated.<key>.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- added with issue 14: descgen simulate
+register(
+    C(
+        "SIM001",
+        "mujoco-mass-below-minimum",
+        "error",
+        "simulate",
+        "MuJoCo refuses a moving body whose mass or a principal inertia is below mjMINVAL (1e-15): "
+        "zero, negative or all-zero inertia.",
+        """MuJoCo will not load the robot at all ("mass and inertia of moving bodies must be larger than
+      mjMINVAL"), and urdfdom accepts it, so the problem appears only in simulation. Give every moving
+      link a positive mass and a positive-definite inertia tensor (or inertia from its collision shape).""",
+    ),
+    C(
+        "SIM002",
+        "mujoco-inertia-triangle",
+        "error",
+        "simulate",
+        "MuJoCo refuses a body whose principal moments of inertia break the triangle inequality (A + B >= C).",
+        """No rigid body has such moments; MuJoCo refuses the model, and with balanceinertia it silently
+      replaces all three by their mean, a different body. Recompute the tensor (a unit slip in one
+      entry is the usual cause).""",
+    ),
+    C(
+        "SIM003",
+        "mujoco-refused",
+        "error",
+        "simulate",
+        "MuJoCo refused the model for another reason (its message is quoted).",
+        """A description that MuJoCo cannot compile cannot be simulated there. The quoted message names
+      the element; fix the description, or report a bug if the URDF is valid.""",
+    ),
+    C(
+        "SIM004",
+        "mujoco-fused-fixed-links",
+        "info",
+        "simulate",
+        "Links on fixed joints are merged into their parent body (MuJoCo's fusestatic default for URDF).",
+        """The merged links are no bodies in MuJoCo: they cannot carry sensors, sites or contacts of their
+      own, and their names vanish from the model. Expected for tool and sensor frames; add
+      <mujoco><compiler fusestatic="false"/></mujoco> to the URDF if a consumer needs them.""",
+    ),
+    C(
+        "SIM005",
+        "mujoco-visuals-dropped",
+        "info",
+        "simulate",
+        "The visuals are discarded; only collision shapes exist in MuJoCo (discardvisual default for URDF).",
+        """What is drawn in MuJoCo is the collision geometry, so a robot that looks right in RViz may look
+      different there. A link with visuals but no collision is invisible and intangible in MuJoCo.""",
+    ),
+    C(
+        "SIM006",
+        "mujoco-mass-from-geometry",
+        "warning",
+        "simulate",
+        "A link without <inertial> gets mass and inertia from its collision shapes at 1000 kg/m^3.",
+        """urdfdom and RViz treat the link as massless, MuJoCo silently gives it the mass of water of its
+      volume, so the two consumers simulate different robots. Give the link an <inertial>.""",
+    ),
+    C(
+        "SIM007",
+        "mujoco-unlimited-joint",
+        "warning",
+        "simulate",
+        "A revolute or prismatic joint with lower > upper or only one bound becomes unlimited in MuJoCo.",
+        """MuJoCo makes such a joint silently unlimited (sdformat swaps the bounds instead), so the joint
+      can move anywhere in simulation. Write lower <= upper, both bounds.""",
+    ),
+    C(
+        "SIM008",
+        "mujoco-mesh-unavailable",
+        "error",
+        "simulate",
+        "A collision mesh cannot be handed to MuJoCo (not found inside the named folders, or a format it "
+        "does not read); the shape is left out.",
+        """MuJoCo opens mesh filenames as plain paths and reads STL, OBJ and MSH only; without the shape the
+      link neither collides nor draws there. Give --package-path, or convert the mesh.""",
+    ),
+    C(
+        "SIM009",
+        "mujoco-unavailable",
+        "error",
+        "simulate",
+        "The mujoco Python package is not installed.",
+        """descgen simulate compiles and runs the robot with MuJoCo, an optional dependency. Install it with
+      pip install 'descgen[sim]' (or pip install 'mujoco>=3').""",
+    ),
+    C(
+        "SIM010",
+        "sim-not-finite",
+        "error",
+        "simulate",
+        "The gravity run produced NaN or infinite positions or velocities.",
+        """The simulation blew up: typically an inertia far too small for its link, a huge actuator gain,
+      or no damping. The joint named is where it showed first; check its link's mass and inertia.""",
+    ),
+    C(
+        "SIM011",
+        "sim-unstable",
+        "error",
+        "simulate",
+        "MuJoCo warned during the gravity run (bad acceleration, contact or constraint overflow).",
+        """MuJoCo resets the state on a bad acceleration (mjWARN_BADQACC), so a run that looks calm may have
+      blown up and restarted. Check masses, inertias, gains and damping.""",
+    ),
+    C(
+        "SIM012",
+        "sim-joint-left-pose",
+        "error",
+        "simulate",
+        "A joint held by a PD controller at the pose drifted beyond its tolerance under gravity, or was "
+        "still moving at the end.",
+        """A joint that its effort limit cannot hold against gravity (mass too large, centre of mass too far
+      out) sags or falls in simulation although RViz shows the pose. Check the masses carried by the joint
+      and its effort limit.""",
+    ),
+    C(
+        "SIM013",
+        "sim-base-tipped",
+        "error",
+        "simulate",
+        "The mobile base, free on a ground plane, tilted beyond the limit or left the floor.",
+        """A centre of mass outside the support of wheels and casters tips the robot over; a description
+      that looks right in RViz falls over in simulation. Check the base and arm masses and where their
+      centres of mass are.""",
+    ),
+    C(
+        "SIM014",
+        "sim-unknown-pose",
+        "error",
+        "simulate",
+        "--pose names no known pose (spec known_poses) and no SRDF group state.",
+        """The run holds the joints at the named pose; an unknown name is a typo. The message lists the
+      pose names there are.""",
+    ),
+    C(
+        "SIM015",
+        "sim-contacts-excluded",
+        "info",
+        "simulate",
+        "Bodies of the robot touch at the pose; their contacts are left out of the gravity run.",
+        """MuJoCo never filters contacts with the world body (a fixed root) and only filters parent and
+      child, so shapes that overlap at rest would push the joints away from the pose. The run excludes
+      them, as an SRDF's disabled collisions would; a consumer needs the same <exclude> pairs.""",
+    ),
+    C(
+        "SIM016",
+        "sim-nothing-to-hold",
+        "error",
+        "simulate",
+        "The robot has no movable joint with one degree of freedom and is not on a free base: the gravity "
+        "run proves nothing.",
+        """Nothing moves, so nothing can sag or tip. Use --base floor for a mobile base, or simulate a
+      description that has joints.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- added with issue 12: descgen import
+register(
+    C(
+        "IMP001",
+        "import-roundtrip-differs",
+        "error",
+        "import",
+        "The imported spec, loaded, rendered and read back, is not the description it came from.",
+        """import proves the spec before writing it: a difference means a value would change on the way
+      to the generated URDF. Nothing is written; the message names the element and both values. It is a
+      bug of descgen import: please report it with the description.""",
+    ),
+    C(
+        "IMP002",
+        "import-already-spec",
+        "error",
+        "import",
+        "The file given to import is already a descgen spec.",
+        """import reads a URDF or a Xacro; a spec is validated and generated as it is.""",
+    ),
+    C(
+        "IMP003",
+        "import-passthrough",
+        "info",
+        "import",
+        "An element the spec has no field for (Gazebo tag, transmission, ros2_control, unknown tag) is kept "
+        "verbatim in passthrough:.",
+        """Nothing may be lost silently. generate writes the element back unchanged (in the Xacro every $ stays
+      data), and the round trip proves it comes back as the same XML. Review it like the rest of the spec.""",
+    ),
+    C(
+        "IMP004",
+        "import-not-kept",
+        "warning",
+        "import",
+        "An element is not kept in the spec: inside a link or joint where the spec has no field, or a "
+        "top-level element that cannot be pass-through (a xacro instruction).",
+        """The generated description will lack it. Add what it means by hand if the robot needs it; a xacro
+      instruction in pass-through would be run by xacro, so it is never kept.""",
+    ),
+    C(
+        "IMP005",
+        "import-controllers-not-imported",
+        "warning",
+        "import",
+        "The controllers YAML given to import is not written into the spec.",
+        """The <ros2_control> blocks stay verbatim in passthrough:, and the spec's controllers section would
+      generate a second block. Keep the controllers file beside the generated package.""",
+    ),
+    C(
+        "IMP007",
+        "import-output-exists",
+        "error",
+        "import",
+        "The -o spec file exists already.",
+        """A spec is reviewed and edited by hand; import never replaces one unless told to. Choose another
+      file, or pass --force.""",
+    ),
+    C(
+        "IMP008",
+        "import-bad-units",
+        "error",
+        "command",
+        "--units of import names a unit that import does not write.",
+        """Lengths are written in mm, cm or m, angles in deg or rad, masses in kg or g (or si for all SI).""",
+    ),
+    C(
+        "IMP010",
+        "passthrough-invalid",
+        "error",
+        "spec",
+        "A passthrough: entry is not one plain XML element (malformed, a DOCTYPE or entity, a link, joint or "
+        "material, or a xacro instruction).",
+        """Pass-through XML is written verbatim into the URDF and the Xacro: it must be well-formed, must not
+      duplicate what the spec writes itself, and must not hold xacro instructions, which xacro would run.""",
+    ),
+    C(
+        "IMP011",
+        "import-state-value-not-kept",
+        "warning",
+        "import",
+        "A group-state value of the SRDF that is not one number (a multi-DOF joint's) is not kept in the spec.",
+        """The spec holds one number per joint in a group state, so a planar or floating joint's values
+      cannot be written there. Nothing may be lost silently: the value and its SRDF line are reported, and
+      the generated SRDF lacks it until it is added by hand.""",
+    ),
+    C(
+        "IMP012",
+        "import-package-outside-project",
+        "warning",
+        "import",
+        "A package named by package:// meshes lies outside the imported spec's project, so the spec cannot "
+        "record it under package_paths:.",
+        """A spec records package folders relative to itself and inside its project (docs/security.md), so
+      it works on any machine. validate and generate will not find these meshes until the package is copied
+      into the project and its folder added under package_paths:.""",
+    ),
+    C(
+        "IMP013",
+        "import-structure-not-used",
+        "info",
+        "import",
+        "Repeated parts or cameras that import recognised are written as plain links and joints, because the "
+        "spec with parts:/sensors: did not give back the same robot.",
+        """parts: and sensors: are written only when the generated URDF stays the same robot; otherwise the
+      flat spec (which the round trip proves) is written instead. Nothing is lost.""",
     ),
 )

@@ -126,13 +126,18 @@ def interfaces_with_limits(robot: Robot) -> list[tuple[str, list[Interface], lis
         return out
     for cj in rc.joints:
         j = robot.joint(cj.name)
-        commands = [Interface(i.name, *command_limits(j, i.name)) for i in cj.command]
+        commands = []
+        for i in cj.command:  # a spec's own min/max win over the joint limits (CTRL008 checks them)
+            lo, hi = command_limits(j, i.name)
+            lo, hi = (lo if i.min is None else i.min), (hi if i.max is None else i.max)
+            commands.append(Interface(i.name, lo, hi, data_type=i.data_type))
         states = []
         for i in cj.state:
             if i.name == "position":
-                states.append(Interface(i.name, initial_value=initial_position(j, i.initial_value)))
+                value = initial_position(j, i.initial_value)
             else:
-                states.append(Interface(i.name, initial_value=0.0))
+                value = 0.0 if i.initial_value is None else i.initial_value
+            states.append(Interface(i.name, initial_value=value, data_type=i.data_type))
         out.append((cj.name, commands, states))
     return out
 

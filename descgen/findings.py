@@ -12,11 +12,19 @@ SEVERITIES: tuple[Severity, ...] = ("error", "warning", "info")
 
 @dataclass(frozen=True)
 class Where:
-    """Where an element or value came from: a file and a 1-based line and column (0 = unknown)."""
+    """Where an element or value came from: a file and a 1-based line and column (0 = unknown).
+
+    ``via`` is how an element of an expanded Xacro got there: the macro calls that produced
+    it, innermost first (the element itself is written in the macro body at file:line)."""
 
     file: str
     line: int = 0
     col: int = 0
+    via: tuple[Where, ...] = ()
+
+    def bare(self) -> Where:
+        """This location without its call chain."""
+        return Where(self.file, self.line, self.col) if self.via else self
 
     def __str__(self) -> str:
         if self.line:
@@ -33,8 +41,13 @@ class Finding:
     subject: str = ""
     where: Where = field(default_factory=lambda: Where("<unknown>"))
 
+    @property
+    def related(self) -> tuple[Where, ...]:
+        """Further locations of the same finding: the macro calls that produced the element."""
+        return self.where.via
+
     def as_dict(self) -> dict[str, object]:
-        return {
+        out: dict[str, object] = {
             "code": self.code,
             "severity": self.severity,
             "subject": self.subject,
@@ -44,6 +57,11 @@ class Finding:
             "message": self.message,
             "hint": self.hint,
         }
+        if self.related:  # only then: documents written before the call chain keep their shape
+            out["related"] = [
+                {"file": w.file, "line": w.line, "col": w.col, "message": "macro called here"} for w in self.related
+            ]
+        return out
 
 
 class InputError(Exception):

@@ -22,28 +22,39 @@ import ctypes
 import difflib
 import errno
 import functools
+import hashlib
 import os
+import re
 import secrets
 import shutil
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import cast
 
 from . import checks
 from .findings import Finding, InputError, Where, errors
+from .mesh_paths import MAX_MESH_BYTES, MESH_FOLDER, own_meshes, spec_folder
 from .model import Robot
 from .render import header, render_package
 from .render.context import package_name
+from .safeio import read_bounded
 from .spec import load_spec
 
 
 @dataclass(frozen=True)
 class Plan:
     robot: Robot
-    files: dict[str, str]
+    files: dict[str, str]  # the rendered text files, the mesh manifest among them
     package_dir: Path
     findings: tuple[Finding, ...]  # warnings from the spec, errors and warnings from the checks
+    # the robot's own meshes: package path -> (source file beside the spec, its bytes)
+    meshes: dict[str, tuple[Path, bytes]] = field(default_factory=dict)
+
+    def content(self) -> dict[str, str | bytes]:
+        """Every file generate writes: the text files and the mesh copies."""
+        every: dict[str, str | bytes] = {**self.files, **{rel: data for rel, (_, data) in self.meshes.items()}}
+        return dict(sorted(every.items()))
 
 
 @dataclass
@@ -75,18 +86,83 @@ def spec_display(spec: Path, out_root: Path) -> str:
 
 
 def plan(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Plan:
-    """Load, render and prove one spec. Raises InputError for invalid input."""
+    """Load, render and prove one spec. Raises InputError for invalid input.
+
+    ``templates`` (--templates) overrides the folder the spec records (``templates:``); that
+    one renders sandboxed, since the spec is someone else's data."""
     root = out_root or default_out(spec)
     loaded = load_spec(spec)
     robot = loaded.robot
-    files = render_package(robot, spec_display(spec, root), templates)
+    recorded = loaded.spec.templates
+    sandboxed = templates is None and recorded is not None
+    if sandboxed and recorded is not None:
+        templates = spec_folder(spec, recorded)  # validated by load_spec (SPEC064)
+    shown = spec_display(spec, root)
+    files = render_package(robot, shown, templates, sandboxed)
+    meshes = _mesh_copies(robot, root)
+    if meshes:
+        files[MANIFEST] = header.add(MANIFEST, _manifest(meshes), shown, robot.spec_hash or "0" * 64)
     package_dir = root / package_name(robot)
     found = [*loaded.findings, *checks.run_all(files, robot, package_dir)]
-    return Plan(robot, files, package_dir, tuple(found))
+    return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes)
 
 
-def _hand_edited(package_dir: Path, files: dict[str, str]) -> list[str]:
-    """Files we would overwrite that are not as descgen wrote them."""
+# --- the robot's own meshes: copied byte for byte, their hashes in a manifest -----------------------
+
+# Binary files carry no header, so the package records what generate copied: check compares
+# copies and sources, generate tells a copy edited in the package from a changed source, and a
+# mesh no longer used is removed like any file descgen no longer generates.
+MANIFEST = f"{MESH_FOLDER}/meshes.sha256"
+_MANIFEST_LINE = re.compile(r"([0-9a-f]{64})  (\S.*)")
+
+
+def _sha256(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def _mesh_copies(robot: Robot, root: Path) -> dict[str, tuple[Path, bytes]]:
+    """Package path -> (source, bytes) of every mesh to copy, each read with a bound."""
+    return {
+        rel: (src, read_bounded(src, "mesh", MAX_MESH_BYTES, display=_shown_source(src, root)))
+        for rel, src in sorted(own_meshes(robot).items())
+    }
+
+
+def _shown_source(src: Path, root: Path) -> str:
+    try:
+        return src.relative_to(root.resolve().parent).as_posix()
+    except ValueError:
+        return str(src)
+
+
+def _manifest(meshes: dict[str, tuple[Path, bytes]]) -> str:
+    lines = ["# sha256 of every mesh generate copied here, as `sha256sum -c` reads it from the package folder"]
+    lines += [f"{_sha256(data)}  {rel}" for rel, (_, data) in meshes.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _recorded_meshes(package_dir: Path) -> dict[str, str]:
+    """Package path -> sha256 of the meshes the package's manifest says generate copied.
+    The manifest is in the output folder, so only paths inside ``meshes/`` are believed."""
+    target = package_dir / MANIFEST
+    if not target.is_file() or target.is_symlink():
+        return {}
+    text = read_bounded(target, "mesh manifest").decode("utf-8", "replace")
+    out: dict[str, str] = {}
+    for line in text.splitlines():
+        m = _MANIFEST_LINE.fullmatch(line)
+        if m is None:
+            continue
+        rel = PurePosixPath(m.group(2))
+        if rel.parts[:1] == (MESH_FOLDER,) and ".." not in rel.parts and not rel.is_absolute():
+            out[rel.as_posix()] = m.group(1)
+    return out
+
+
+def _hand_edited(package_dir: Path, files: dict[str, str], meshes: Mapping[str, tuple[Path, bytes]] = {}) -> list[str]:
+    """Files we would overwrite that are not as descgen wrote them: a text file whose content
+    no longer matches its header, a mesh copy that is neither the new bytes nor what the
+    manifest recorded (edited in the package, or someone else's file)."""
     edited = []
     for rel in files:
         target = package_dir / rel
@@ -95,16 +171,25 @@ def _hand_edited(package_dir: Path, files: dict[str, str]) -> list[str]:
         stamp = header.read(target.read_text(encoding="utf-8", errors="replace"))
         if stamp is None or stamp.hand_edited:
             edited.append(rel)
+    recorded = _recorded_meshes(package_dir) if meshes else {}
+    for rel, (_, data) in meshes.items():
+        target = package_dir / rel
+        if not target.is_file():
+            continue
+        now = _sha256(read_bounded(target, "mesh", MAX_MESH_BYTES))
+        if now != _sha256(data) and now != recorded.get(rel):
+            edited.append(rel)
     return edited
 
 
 # What generate owns; other commands may add their own evidence to the package.
-_OWN_DIRS = {"urdf", "srdf", "config", "launch", "rviz", "package.xml", "CMakeLists.txt"}
+_OWN_DIRS = {"urdf", "srdf", "config", "launch", "rviz", "package.xml", "CMakeLists.txt", MESH_FOLDER}
 _OWN_FILES: set[str] = {"evidence/known_poses.md", "evidence/frames.md", "evidence/frames.dot"}
 
 
 def _ours(package_dir: Path) -> list[str]:
-    """Files of the package that ``generate`` wrote earlier (they carry its header)."""
+    """Files of the package that ``generate`` wrote earlier: those carrying its header, and
+    the mesh copies its manifest lists."""
     found: list[str] = []
     if not package_dir.is_dir():
         return found
@@ -113,12 +198,14 @@ def _ours(package_dir: Path) -> list[str]:
         # only where generate writes, so other commands' (possibly large) evidence is not read
         if p.is_file() and not p.is_symlink() and (rel.split("/")[0] in _OWN_DIRS or rel in _OWN_FILES):
             try:
-                head = p.read_text(encoding="utf-8")[:600]
-            except (UnicodeDecodeError, OSError):
+                with open(p, "rb") as fh:  # the head only: a mesh may be large and is not text
+                    head = fh.read(600).decode("utf-8", errors="ignore")
+            except OSError:
                 continue
             if header.MARK in head:
                 found.append(rel)
-    return found
+    copies = [rel for rel in _recorded_meshes(package_dir) if (package_dir / rel).is_file()]
+    return sorted({*found, *copies})
 
 
 def _refusal(code: str, message: str, hint: str, path: Path) -> Finding:
@@ -321,12 +408,16 @@ def _fsync(path: Path) -> None:
         os.close(fd)
 
 
-def _changes(package_dir: Path, files: dict[str, str]) -> Outcome:
+def _bytes(content: str | bytes) -> bytes:
+    return content.encode("utf-8") if isinstance(content, str) else content
+
+
+def _changes(package_dir: Path, files: Mapping[str, str | bytes]) -> Outcome:
     """Which files change, which stay, which of ours are no longer produced (compared as bytes)."""
     out = Outcome()
-    for rel, text in files.items():
+    for rel, content in files.items():
         target = package_dir / rel
-        same = target.is_file() and target.read_bytes() == text.encode("utf-8")
+        same = target.is_file() and target.read_bytes() == _bytes(content)
         (out.unchanged if same else out.written).append(rel)
     out.removed = [rel for rel in _ours(package_dir) if rel not in files]
     return out
@@ -353,15 +444,15 @@ def _copy_tree(src: Path, dst: Path, skip: set[str], rel: str = "") -> None:
                     shutil.copy2(source, target, follow_symlinks=False)
 
 
-def _write(path: Path, text: str) -> None:
+def _write(path: Path, content: str | bytes) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write(text)
+    with open(path, "wb") as fh:  # text is written as UTF-8 with \n line ends, exactly as rendered
+        fh.write(_bytes(content))
         fh.flush()
         os.fsync(fh.fileno())
 
 
-def _build(new: Path, package_dir: Path, files: dict[str, str], out: Outcome) -> None:
+def _build(new: Path, package_dir: Path, files: Mapping[str, str | bytes], out: Outcome) -> None:
     """The complete new package in ``new``: the old one's files (ours that changed or went
     stale left out, everyone else's kept), then the files that changed."""
     if package_dir.is_dir():
@@ -393,7 +484,7 @@ def _switch(new: Path, package_dir: Path) -> Path | None:
     return old
 
 
-def write_package(package_dir: Path, files: dict[str, str]) -> Outcome:
+def write_package(package_dir: Path, files: Mapping[str, str | bytes]) -> Outcome:
     """Switch the package to ``files`` as a whole: build the complete new package in a
     scratch folder in the output root, then swap the two folders (see :func:`_switch`).
     Files descgen wrote earlier and no longer produces are dropped; other files (evidence
@@ -439,14 +530,19 @@ def generate(spec: Path, out_root: Path | None = None, templates: Path | None = 
     if outcome.failed:
         return outcome
     refuse_unsafe(p.package_dir)  # before reading any file of the package
-    edited = [] if force else _hand_edited(p.package_dir, p.files)
+    edited = [] if force else _hand_edited(p.package_dir, p.files, p.meshes)
     if edited:
         for rel in edited:
+            how = (
+                f"is neither its source nor what {MANIFEST} recorded"
+                if rel in p.meshes
+                else "its content no longer matches its header"
+            )
             outcome.findings.append(
                 Finding(
                     "GEN004",
                     "error",
-                    f"{rel} was edited by hand (its content no longer matches its header); not overwritten",
+                    f"{rel} was edited by hand ({how}); not overwritten",
                     "move the change into the spec or a template, or run with --force to discard it",
                     f"file:{rel}",
                     Where(str(p.package_dir / rel)),
@@ -454,7 +550,7 @@ def generate(spec: Path, out_root: Path | None = None, templates: Path | None = 
             )
         return outcome
     try:
-        written = write_package(p.package_dir, p.files)
+        written = write_package(p.package_dir, p.content())
     except OSError as exc:  # a full disk, a read-only --out: the old package is still in place
         raise InputError(
             [
@@ -528,8 +624,9 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
                 )
             )
         )
+    outcome.findings += _stale_meshes(p)
     for rel in _ours(p.package_dir):
-        if rel not in p.files:
+        if rel not in p.files and rel not in p.meshes:
             outcome.findings.append(
                 Finding(
                     "GEN007",
@@ -543,6 +640,32 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
     outcome.diff = "".join(diffs)
     outcome.findings += _stale_evidence(spec, p, root or default_out(spec))
     return outcome
+
+
+def _stale_meshes(p: Plan) -> list[Finding]:
+    """Every mesh copy compared byte for byte with its source beside the spec."""
+    found: list[Finding] = []
+    for rel, (src, data) in p.meshes.items():
+        target = p.package_dir / rel
+        where = Where(str(target))
+        if not target.is_file():
+            found.append(Finding("GEN006", "error", f"{rel} is missing", "run descgen generate", f"file:{rel}", where))
+            continue
+        now = read_bounded(target, "mesh", MAX_MESH_BYTES)
+        if now != data:
+            found.append(
+                Finding(
+                    "GEN060",
+                    "error",
+                    f"{rel} differs from its source {_shown_source(src, p.package_dir.parent)} "
+                    f"(sha256 {_sha256(now)[:12]}... in the package, "
+                    f"{_sha256(data)[:12]}... at the source)",
+                    "run descgen generate and commit the result; to change a mesh, edit the file beside the spec",
+                    f"file:{rel}",
+                    where,
+                )
+            )
+    return found
 
 
 def _stale_evidence(spec: Path, p: Plan, root: Path) -> list[Finding]:

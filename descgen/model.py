@@ -60,6 +60,10 @@ class Sphere:
 class Mesh:
     filename: str
     scale: Vec3 = (1.0, 1.0, 1.0)
+    # A spec's measured size of the scaled mesh (bounding box extents, m) and how far the
+    # file may differ from it (m); None: not stated (GEOM030).
+    size: Vec3 | None = None
+    size_tolerance: float | None = None
 
 
 Geometry = Box | Cylinder | Sphere | Mesh
@@ -229,6 +233,7 @@ class Interface:
     min: float | None = None
     max: float | None = None
     initial_value: float | None = None
+    data_type: str | None = None  # ros2_control's data_type attribute; None: not written (double)
 
 
 @dataclass(frozen=True)
@@ -250,6 +255,31 @@ class ControlSensor:
     name: str
     state: tuple[Interface, ...] = ()
     where: Where = NOWHERE
+    params: tuple[tuple[str, str], ...] = ()  # <param>s of the sensor (e.g. frame_id)
+    frame: str | None = None  # the link the sensor measures in (spec only; checked against the model)
+    block: str = ""  # name of the <ros2_control> block holding the sensor
+
+
+@dataclass(frozen=True)
+class ControlGpio:
+    """A ros2_control ``<gpio>``: command and state interfaces, not checked against the URDF."""
+
+    name: str
+    command: tuple[Interface, ...] = ()
+    state: tuple[Interface, ...] = ()
+    where: Where = NOWHERE
+    block: str = ""  # name of the <ros2_control> block holding the gpio
+
+
+@dataclass(frozen=True)
+class HardwareVariant:
+    """One value of the generated Xacro's ``hardware`` argument: the plugin and parameters of
+    the ``<hardware>`` element when the description is expanded with ``hardware:=<name>``."""
+
+    name: str  # mock | gazebo | real
+    plugin: str
+    params: tuple[tuple[str, str], ...] = ()
+    where: Where = NOWHERE
 
 
 @dataclass(frozen=True)
@@ -260,6 +290,8 @@ class HardwareBlock:
     plugin: str
     params: tuple[tuple[str, str], ...] = ()
     where: Where = NOWHERE
+    type: str = "system"  # system | actuator | sensor
+    variants: tuple[HardwareVariant, ...] = ()  # as Ros2Control.variants, for this block
 
 
 @dataclass(frozen=True)
@@ -299,6 +331,16 @@ class Ros2Control:
     sensors: tuple[ControlSensor, ...] = ()
     blocks: tuple[HardwareBlock, ...] = ()  # every block read from a URDF; empty for a spec (one block)
     sim_plugins: tuple[tuple[str, Where], ...] = ()  # <gazebo><plugin filename> entries of the description
+    # hardware variants selected by the Xacro argument ``hardware`` (spec only); empty: one hardware.
+    # The first is the default, which ``plugin``/``params`` above describe.
+    variants: tuple[HardwareVariant, ...] = ()
+    gpios: tuple[ControlGpio, ...] = ()
+
+    def hardware_blocks(self) -> tuple[HardwareBlock, ...]:
+        """Every ``<ros2_control>`` block in document order; a spec with one block has no
+        ``blocks``, so it is the block described by the fields above."""
+        first = HardwareBlock(self.name, self.plugin, self.params, self.where, self.type, self.variants)
+        return self.blocks or (first,)
 
 
 @dataclass(frozen=True)
@@ -428,6 +470,15 @@ class Robot:
     # (mesh filename, state) for every mesh of a read description (audit/inputs.mesh_status);
     # empty when nobody resolved the files, e.g. a spec loaded for generation (GEOM003-005).
     mesh_status: tuple[tuple[str, MeshState], ...] = ()
+    # (mesh filename, absolute path of the file it resolved to) for every mesh found on disk
+    # (descgen/mesh_paths.py). A spec's own meshes are already renamed here to
+    # package://<robot>_description/meshes/..., and the path is the source file beside the spec.
+    mesh_files: tuple[tuple[str, str], ...] = ()
+    # XML elements the spec cannot express (spec ``passthrough:``), written verbatim into the URDF
+    passthrough: tuple[str, ...] = ()
+    # fixed joints a <gazebo reference="joint"> keeps from sdformat's lumping (preserveFixedJoint or
+    # disableFixedJointLumping); read from a URDF, empty for a spec (GEOM040, GEOM041)
+    sdf_preserved_joints: tuple[str, ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

@@ -9,6 +9,7 @@ and the proofs ask here, so a rule module holds rules only.
 from __future__ import annotations
 
 import math
+import statistics
 from collections.abc import Callable
 
 import numpy as np
@@ -150,3 +151,10 @@ def static_load(j: Joint, frame: Mat, mass: float, moment: Mat) -> float:
     lo = lm.lower if lm is not None and lm.lower is not None else -math.pi
     hi = lm.upper if lm is not None and lm.upper is not None else math.pi
     return max_abs_harmonic(a, b, min(lo, hi), max(lo, hi))
+
+
+def robot_scale(robot: Robot) -> float:
+    """Median length of the non-zero joint offsets: the size of a typical link."""
+    lengths = [math.hypot(*j.origin.xyz) for j in robot.joints]
+    lengths = [x for x in lengths if x > 1e-4]
+    return statistics.median(lengths) if lengths else 0.1

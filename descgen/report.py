@@ -6,7 +6,7 @@ import json
 import re
 from collections.abc import Iterable
 
-from .findings import Finding, summary
+from .findings import Finding, Where, summary
 
 MAX_QUOTED = 200  # characters of one quoted value in a text message
 MAX_FIELD = 2000  # characters of one printed field, whatever it holds
@@ -36,10 +36,12 @@ def printable(value: object, limit: int = MAX_FIELD) -> str:
 
 
 def text(findings: Iterable[Finding]) -> str:
-    """One line per finding plus its hint line: nothing in a value can add a line."""
+    """One line per finding, a line per macro call that produced the element (innermost
+    first), then its hint line: nothing in a value can add a line."""
     lines = []
     for f in findings:
         lines.append(f"{printable(f.where)}: {f.severity}[{f.code}]: {printable(f.message)}")
+        lines.extend(f"  in macro called from {printable(w)}" for w in f.related)
         if f.hint:
             lines.append(f"  hint: {printable(f.hint)}")
     return "\n".join(lines) + ("\n" if lines else "")
@@ -57,8 +59,6 @@ _LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
     """SARIF 2.1.0 (what GitHub code scanning reads): one run, the rules that fired (their
     catalogue entry, descgen/codes.py, as help), one result per finding."""
-    from pathlib import Path
-
     from . import __version__
     from .codes import entries
 
@@ -86,30 +86,26 @@ def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
     index = {code: i for i, code in enumerate(codes)}
     results = []
     for f in fs:
-        uri = f.where.file.removesuffix(" (expanded)")
-        if base is not None:
-            try:
-                uri = Path(uri).resolve().relative_to(Path(base).resolve()).as_posix()
-            except ValueError:
-                uri = Path(uri).as_posix()
-        location: dict[str, object] = {"artifactLocation": {"uri": uri}}
-        if f.where.line > 0:
-            region: dict[str, int] = {"startLine": f.where.line}
-            if f.where.col > 0:
-                region["startColumn"] = f.where.col
-            location["region"] = region
         message = f.message + (f" (hint: {f.hint})" if f.hint else "")
-        results.append(
-            {
-                "ruleId": f.code,
-                "ruleIndex": index[f.code],
-                "level": _LEVEL[f.severity],
-                "message": {"text": message},
-                "locations": [
-                    {"physicalLocation": location, **({"logicalLocations": [{"name": f.subject}]} if f.subject else {})}
-                ],
-            }
-        )
+        result: dict[str, object] = {
+            "ruleId": f.code,
+            "ruleIndex": index[f.code],
+            "level": _LEVEL[f.severity],
+            "message": {"text": message},
+            "locations": [
+                {
+                    "physicalLocation": _physical(f.where, base),
+                    **({"logicalLocations": [{"name": f.subject}]} if f.subject else {}),
+                }
+            ],
+        }
+        if f.related:
+            # the macro calls, innermost first; ids are unique within the result (SARIF 3.28.2)
+            result["relatedLocations"] = [
+                {"id": i, "physicalLocation": _physical(w, base), "message": {"text": "macro called here"}}
+                for i, w in enumerate(f.related, 1)
+            ]
+        results.append(result)
     doc = {
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
         "version": "2.1.0",
@@ -121,3 +117,22 @@ def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
         ],
     }
     return json.dumps(doc, indent=2) + "\n"
+
+
+def _physical(where: Where, base: str | None) -> dict[str, object]:
+    """A SARIF physicalLocation: the file relative to ``base`` when it lies inside, and the region."""
+    from pathlib import Path
+
+    uri = where.file.removesuffix(" (expanded)")
+    if base is not None:
+        try:
+            uri = Path(uri).resolve().relative_to(Path(base).resolve()).as_posix()
+        except ValueError:
+            uri = Path(uri).as_posix()
+    location: dict[str, object] = {"artifactLocation": {"uri": uri}}
+    if where.line > 0:
+        region: dict[str, int] = {"startLine": where.line}
+        if where.col > 0:
+            region["startColumn"] = where.col
+        location["region"] = region
+    return location

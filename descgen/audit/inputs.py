@@ -8,12 +8,13 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import mesh_paths
 from ..findings import Finding, Where
-from ..model import Mesh, MeshState, Robot, Ros2Control
+from ..model import MeshState, Robot, Ros2Control
 from ..readers.controllers import read_controllers_text
 from ..readers.srdf import read_srdf_text
 from ..readers.urdf import read_urdf_text
-from ..readers.xacro_file import expand, find_package
+from ..readers.xacro_file import expand_located
 from ..safeio import check_file, read_bounded, read_head
 from .registry import run
 
@@ -39,46 +40,9 @@ def kind_of(path: Path) -> str:
     return "xacro" if b"xmlns:xacro" in head else "urdf"
 
 
-def _package_root(start: Path) -> Path:
-    for folder in (start, *start.parents):
-        if (folder / "package.xml").is_file():
-            return folder
-    return start
-
-
 def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) -> dict[str, MeshState]:
-    """ok | missing | escapes | unresolved, for every mesh filename."""
-    out: dict[str, MeshState] = {}
-    base = description.resolve().parent
-    for lk in robot.links:
-        for shape in lk.shapes():
-            g = shape.geometry
-            if not isinstance(g, Mesh) or g.filename in out:
-                continue
-            try:
-                out[g.filename] = _mesh_state(g.filename, base, package_paths)
-            except (OSError, ValueError):
-                # a name longer than the OS allows, a symlink loop, a NUL byte: no file can be there
-                out[g.filename] = "missing"
-    return out
-
-
-def _mesh_state(name: str, base: Path, package_paths: Sequence[Path]) -> MeshState:
-    if name.startswith("package://"):
-        pkg, _, rest = name[len("package://") :].partition("/")
-        root = find_package(pkg, [*package_paths, base.parent, base]) if pkg else None
-        if root is None:
-            return "unresolved"
-        target = (root / rest).resolve()
-        root = root.resolve()
-    elif name.startswith("file://") or name.startswith("/"):
-        return "escapes"
-    else:
-        root = _package_root(base).resolve()
-        target = (base / name).resolve()
-    if not target.is_relative_to(root):
-        return "escapes"
-    return "ok" if target.is_file() else "missing"
+    """ok | missing | escapes | unresolved, for every mesh filename (descgen/mesh_paths.py)."""
+    return mesh_paths.mesh_status(robot, description, package_paths)[0]
 
 
 def load_description(path: Path, options: Options = Options()) -> tuple[Robot, list[Finding]]:
@@ -90,14 +54,16 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
     if kind == "spec":
         from ..spec import load_spec
 
-        robot = load_spec(path, shown, rules=False).robot
+        robot = load_spec(path, shown, rules=False, package_paths=options.package_paths).robot
     else:
+        sources = None  # a Xacro's: where each expanded element was written, so findings point there
         if kind == "xacro":
-            data = expand(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+            expansion = expand_located(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+            data, sources = expansion.xml, expansion.sources
         else:
             data = read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
-        robot, found = read_urdf_text(data, display)
+        robot, found = read_urdf_text(data, display, sources)
     if options.srdf is not None:
         semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
         found += more
@@ -111,8 +77,11 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
         robot = dataclasses.replace(
             robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
         )
-    status = mesh_status(robot, path, options.package_paths)
-    return dataclasses.replace(robot, mesh_status=tuple(status.items())), found
+    if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
+        return robot, found
+    status, files = mesh_paths.mesh_status(robot, path, options.package_paths)
+    resolved = tuple((name, str(p)) for name, p in files.items())
+    return dataclasses.replace(robot, mesh_status=tuple(status.items()), mesh_files=resolved), found
 
 
 def _read(path: Path, what: str) -> bytes:

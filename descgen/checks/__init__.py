@@ -17,7 +17,7 @@ from .package import package_xml
 from .semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
 from .urdf_roundtrip import urdf_roundtrip
 from .urdfdom import check_urdf
-from .xacro_expand import xacro_matches_urdf
+from .xacro_expand import xacro_matches_urdf, xacro_variants_match
 
 __all__ = [
     "CHECKS",
@@ -32,6 +32,7 @@ __all__ = [
     "srdf_roundtrip",
     "urdf_roundtrip",
     "xacro_matches_urdf",
+    "xacro_variants_match",
 ]
 
 Files = dict[str, str]
@@ -39,6 +40,7 @@ Check = Callable[[Files, Robot, Path], list[Finding]]
 
 CHECKS: list[tuple[str, Check]] = [
     ("xacro expands to the URDF", xacro_matches_urdf),
+    ("xacro hardware:=gazebo|real expands to the model's variants", xacro_variants_match),
     ("package.xml is a valid format 3 manifest", package_xml),
     ("controllers YAML names existing joints and interfaces", controllers_yaml),
     ("yourdfpy reads back the model from the URDF", urdf_roundtrip),

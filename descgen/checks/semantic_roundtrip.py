@@ -12,7 +12,7 @@ from lxml import etree
 
 from .. import derive
 from ..findings import Finding, Where
-from ..model import Robot
+from ..model import Interface, Robot
 from ..xmlcompare import line_of, parse
 
 
@@ -127,48 +127,82 @@ def srdf_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> list[Fin
 
 
 def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
+    """Every ``<ros2_control>`` block of the URDF (the default hardware variant) against the
+    model: name, type, hardware, and each joint, sensor and gpio with its interfaces, their
+    data types and params; the other variants are proven by ``xacro_variants_match``."""
+    from ..render.control_blocks import in_block
+
     rel = f"urdf/{robot.name}.urdf"
     rc = robot.ros2_control
     if rc is None:
         return []
     d = _Diffs(str(where / rel), "GEN032", "ros2_control block")
     root = parse(files[rel])
-    blocks = root.findall("ros2_control")
-    if len(blocks) != 1:
-        d.eq("ros2_control/count", 1, len(blocks))
-        return d.found
-    b = blocks[0]
-    line = line_of(b)
-    d.eq("ros2_control/name", rc.name, b.get("name"), line)
-    d.eq("ros2_control/type", rc.type, b.get("type"), line)
-    d.eq("ros2_control/plugin", rc.plugin, (b.findtext("hardware/plugin") or "").strip(), line)
-    d.eq(
-        "ros2_control/params", dict(rc.params), {p.get("name"): p.text or "" for p in b.findall("hardware/param")}, line
-    )
-    joints = {j.get("name"): j for j in b.findall("joint")}
-    d.eq("ros2_control/joints", [cj.name for cj in rc.joints], list(joints), line)
-    for name, commands, states in derive.interfaces_with_limits(robot):
-        e = joints.get(name)
-        if e is None:
+    expected = rc.hardware_blocks()
+    found = root.findall("ros2_control")
+    d.eq("ros2_control/blocks", [(b.name, b.type) for b in expected], [(e.get("name"), e.get("type")) for e in found])
+    written = dict(zip([e.get("name") for e in found], found, strict=True))
+    joints = derive.interfaces_with_limits(robot)
+    block_of = {cj.name: cj.block for cj in rc.joints}
+    mimic = {cj.name: cj.mimic for cj in rc.joints}
+    for hb in expected:
+        b = written.get(hb.name)
+        if b is None:
             continue
-        jl = line_of(e)
-
-        def params(iface: Any) -> dict[str, float | None]:
-            return {p.get("name"): _f(p.text) for p in iface.findall("param")}
-
+        line = line_of(b)
+        at = "ros2_control" if len(expected) == 1 else f"ros2_control:{hb.name}"
+        d.eq(f"{at}/plugin", hb.plugin, (b.findtext("hardware/plugin") or "").strip(), line)
+        d.eq(f"{at}/params", dict(hb.params), {p.get("name"): p.text or "" for p in b.findall("hardware/param")}, line)
+        mine = [jt for jt in joints if in_block(rc, hb, block_of.get(jt[0], ""))]
+        elements = {j.get("name"): j for j in b.findall("joint")}
+        d.eq(f"{at}/joints", [name for name, _, _ in mine], [j.get("name") for j in b.findall("joint")], line)
+        for name, commands, states in mine:
+            e = elements.get(name)
+            if e is None:
+                continue
+            jl = line_of(e)
+            d.eq(f"joint:{name}/mimic", mimic.get(name), e.get("mimic"), jl)
+            d.eq(f"joint:{name}/command_interfaces", [_iface(i) for i in commands], _ifaces(e, "command"), jl)
+            d.eq(f"joint:{name}/state_interfaces", [_iface(i) for i in states], _ifaces(e, "state"), jl)
+        sensors = [c for c in rc.sensors if in_block(rc, hb, c.block)]
         d.eq(
-            f"joint:{name}/command_interfaces",
-            [(i.name, {k: v for k, v in (("min", i.min), ("max", i.max)) if v is not None}) for i in commands],
-            [(c.get("name"), params(c)) for c in e.findall("command_interface")],
-            jl,
+            f"{at}/sensors",
+            [(c.name, [_iface(i) for i in c.state], dict(c.params)) for c in sensors],
+            [
+                (s.get("name"), _ifaces(s, "state"), {p.get("name"): p.text or "" for p in s.findall("param")})
+                for s in b.findall("sensor")
+            ],
+            line,
         )
+        gpios = [g for g in rc.gpios if in_block(rc, hb, g.block)]
         d.eq(
-            f"joint:{name}/state_interfaces",
-            [(i.name, {} if i.initial_value is None else {"initial_value": i.initial_value}) for i in states],
-            [(s.get("name"), params(s)) for s in e.findall("state_interface")],
-            jl,
+            f"{at}/gpios",
+            [(g.name, [_iface(i) for i in g.command], [_iface(i) for i in g.state]) for g in gpios],
+            [(g.get("name"), _ifaces(g, "command"), _ifaces(g, "state")) for g in b.findall("gpio")],
+            line,
+        )
+        # nothing else: an element the model does not know (a stray <joint>, a <sensor> typo)
+        d.eq(
+            f"{at}/elements",
+            ["hardware"] + ["joint"] * len(mine) + ["sensor"] * len(sensors) + ["gpio"] * len(gpios),
+            [str(c.tag) for c in b if isinstance(c.tag, str)],
+            line,
         )
     return d.found
+
+
+def _iface(i: Interface) -> tuple[str, str | None, dict[str, float]]:
+    """An interface of the model as (name, data_type, params) for comparison."""
+    params = (("min", i.min), ("max", i.max), ("initial_value", i.initial_value))
+    return i.name, i.data_type, {k: v for k, v in params if v is not None}
+
+
+def _ifaces(e: etree._Element, kind: str) -> list[tuple[str | None, str | None, dict[str | None, float | None]]]:
+    """The ``<{kind}_interface>`` children of ``e`` as written, in the shape of ``_iface``."""
+    return [
+        (i.get("name"), i.get("data_type"), {p.get("name"): _f(p.text) for p in i.findall("param")})
+        for i in e.findall(f"{kind}_interface")
+    ]
 
 
 def _plain(v: Any) -> Any:

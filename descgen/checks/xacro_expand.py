@@ -8,7 +8,7 @@ from pathlib import Path
 from lxml import etree
 
 from ..findings import Finding, InputError, Where
-from ..model import Robot
+from ..model import Robot, Ros2Control
 from ..readers.xacro_file import expand as sandboxed_expand
 from ..xmlcompare import first_difference, parse
 
@@ -18,14 +18,22 @@ def expand(files: dict[str, str], xacro_path: str) -> str:
 
     It is expanded in the same sandbox as an audited Xacro: the Xacro is made from a
     spec, which is someone else's data, so it is never given xacro's own evaluator."""
+    return expand_with(files, xacro_path, "package", {})[0]
+
+
+def expand_with(files: dict[str, str], xacro_path: str, package: str, args: dict[str, str]) -> tuple[str, str]:
+    """Expand with Xacro arguments, the package laid out as ``<scratch>/<package>/`` so that
+    ``$(find <package>)`` resolves to it; returns the XML and the package folder."""
     with tempfile.TemporaryDirectory(prefix="descgen-xacro-") as tmp:
         root = Path(tmp)
+        folder = root / package
         for rel, text in files.items():
-            if rel.endswith(".xacro") or rel == "package.xml":
-                target = root / rel
+            if rel.endswith((".xacro", ".yaml")) or rel == "package.xml":
+                target = folder / rel
                 target.parent.mkdir(parents=True, exist_ok=True)
                 target.write_text(text, encoding="utf-8")
-        return sandboxed_expand(root / xacro_path, xacro_path).decode("utf-8")
+        xml = sandboxed_expand(folder / xacro_path, xacro_path, args, package_paths=[root]).decode("utf-8")
+        return xml, str(folder)
 
 
 def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
@@ -70,3 +78,69 @@ def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list
             )
         ]
     return []
+
+
+def xacro_variants_match(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
+    """Every hardware variant but the default: ``xacro ... hardware:=<variant>`` gives the
+    committed URDF (the default variant) with the variant's ``<hardware>`` and, for gazebo, the
+    gz_ros2_control sim plugin whose ``<parameters>`` is the package's controllers file.
+
+    The expectation is built from the URDF as data (lxml), not by rendering a template again,
+    so a template that writes a variant wrongly cannot agree with itself."""
+    from ..render.context import GZ_SIM_PLUGIN, package_name
+
+    rc = robot.ros2_control
+    if rc is None or len(rc.variants) < 2:
+        return []
+    xacro_path = f"urdf/{robot.name}.urdf.xacro"
+    loc = Where(str(where / xacro_path))
+    out: list[Finding] = []
+    for variant in rc.variants[1:]:
+        try:
+            text, folder = expand_with(files, xacro_path, package_name(robot), {"hardware": variant.name})
+        except InputError as exc:
+            why = "; ".join(f.message for f in exc.findings)
+            out.append(_gen001(f"xacro {xacro_path} hardware:={variant.name} failed: {why}", xacro_path, loc))
+            continue
+        expected = _variant_document(files[f"urdf/{robot.name}.urdf"], rc, variant.name, folder, GZ_SIM_PLUGIN)
+        diff = first_difference(parse(text), expected)
+        if diff:
+            out.append(
+                _gen001(
+                    f"xacro {xacro_path} hardware:={variant.name} differs from the model at {diff}", xacro_path, loc
+                )
+            )
+    return out
+
+
+def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim: tuple[str, str]) -> etree._Element:
+    """The default URDF with each block's hardware of ``variant`` (and Gazebo's sim plugin for
+    gazebo). A block of the file the model does not know keeps its hardware, so the comparison
+    reports it."""
+    doc = parse(urdf)
+    chosen = {b.name: v for b in rc.hardware_blocks() for v in b.variants if v.name == variant}
+    for block in doc.findall("ros2_control"):
+        hw = block.find("hardware")
+        v = chosen.get(block.get("name", ""))
+        if hw is None or v is None:
+            continue
+        for child in list(hw):
+            hw.remove(child)
+        etree.SubElement(hw, "plugin").text = v.plugin
+        for k, val in v.params:
+            etree.SubElement(hw, "param", name=k).text = val
+    if variant == "gazebo":
+        plugin = etree.SubElement(etree.SubElement(doc, "gazebo"), "plugin", filename=sim[0], name=sim[1])
+        etree.SubElement(plugin, "parameters").text = f"{folder}/config/ros2_controllers.yaml"
+    return doc
+
+
+def _gen001(message: str, xacro_path: str, loc: Where) -> Finding:
+    return Finding(
+        "GEN001",
+        "error",
+        message,
+        "the Xacro's hardware variants disagree with the spec; fix the ros2_control templates",
+        "file:" + xacro_path,
+        loc,
+    )

@@ -9,13 +9,13 @@ import math
 from pathlib import Path
 
 from ..findings import Finding, InputError, Where
-from ..model import Robot, Ros2Control
+from ..model import HardwareBlock, Robot, Ros2Control
 from ..readers.controllers import read_controllers_text
 from ..readers.urdf import read_urdf_text
 from ..readers.xacro_file import expand
 from .hardware_info import active_mimic
 from .manager import ControllerManager
-from .system import Hardware, JointHw, MimicHw, Plant, Trace
+from .system import Hardware, HardwareSet, JointHw, MimicHw, Plant, Trace
 
 
 def find_package(spec: Path, robot: Robot, given: Path | None) -> Path:
@@ -65,27 +65,40 @@ def load_system(package: Path, robot: Robot, plant: Plant) -> ControllerManager:
     _refuse_like_jazzy(robot, rc, xacro)
     trace = Trace()
     policies = {cj.name: cj.on_limit for cj in robot.ros2_control.joints} if robot.ros2_control else {}
-    joints = []
-    for cj in rc.joints:
-        joints.append(
-            JointHw(
-                cj.name,
-                {i.name: math.nan for i in cj.command},
-                {i.name: math.nan if i.initial_value is None else i.initial_value for i in cj.state},
-                {i.name: (i.min, i.max) for i in cj.command},
-                policies.get(cj.name, "reject"),
-            )
-        )
-    hw = Hardware(rc.name, rc.plugin, dict(rc.params), joints, trace, plant)
-    hw.mimics = mimic_joints(robot, rc)
-    for j in robot.joints:
-        if j.limit is not None and j.limit.velocity:
-            hw.vel_limit[j.name] = abs(j.limit.velocity)
+    limits = {j.name: abs(j.limit.velocity) for j in robot.joints if j.limit is not None and j.limit.velocity}
+    parts = []
+    for block in rc.hardware_blocks():  # one GenericSystem per <ros2_control> block
+        hw = Hardware(block.name, block.plugin, dict(block.params), _joints(rc, block, policies), trace, plant)
+        hw.mimics = [mj for mj in mimic_joints(robot, rc) if any(j.name == mj.joint for j in hw.joints)]
+        hw.vel_limit = {j.name: limits[j.name] for j in hw.joints if j.name in limits}
+        parts.append(hw)
+    if len(parts) == 1:
+        hw = parts[0]
+    else:
+        hw = HardwareSet(parts, trace, plant)
+        hw.kinds = {b.name: b.type for b in rc.hardware_blocks()}
     cm = ControllerManager(hw, rate or 100.0, trace)
     cm.start_hardware()
     for c in controllers:
         cm.spawn(c.name, c.type, {k: _plain(v) for k, v in c.params})
     return cm
+
+
+def _joints(rc: Ros2Control, block: HardwareBlock, policies: dict[str, str]) -> list[JointHw]:
+    """The joints of one block as its GenericSystem holds them: commands NaN until configured,
+    states at their initial values, command limits from the interfaces' min/max."""
+    several = len(rc.hardware_blocks()) > 1
+    return [
+        JointHw(
+            cj.name,
+            {i.name: math.nan for i in cj.command},
+            {i.name: math.nan if i.initial_value is None else i.initial_value for i in cj.state},
+            {i.name: (i.min, i.max) for i in cj.command},
+            policies.get(cj.name, "reject"),
+        )
+        for cj in rc.joints
+        if not several or cj.block == block.name
+    ]
 
 
 def _refuse_like_jazzy(robot: Robot, rc: Ros2Control, xacro: Path) -> None:

@@ -117,6 +117,45 @@ class DiffDriveController(Controller):
         self.last = pos
 
 
+class GripperActionController(Controller):
+    """position_controllers/GripperActionController and parallel_gripper_action_controller:
+    one ``joint``; a goal (``~/gripper_cmd``) is a single target position, commanded as is on
+    every update until the next goal (gripper_action_controller_impl.hpp,
+    parallel_gripper_action_controller_impl.hpp). A trajectory file's points are successive
+    goals: point i is sent when point i-1's time has passed and must be reached by its own
+    time, so tracking is judged at the points' times only (``settles``)."""
+
+    settles = True
+
+    def __init__(self, *args: Any) -> None:
+        super().__init__(*args)
+        joint = self.params.get("joint")
+        self.joints = [str(joint)] if joint else []
+        self.points: list[Point] = []
+        self.t0 = 0.0
+        self.desired: dict[str, float] = {}
+
+    def claims(self) -> list[str]:
+        return [f"{j}/position" for j in self.joints]
+
+    def follow(self, points: list[Point], t0: float) -> None:
+        self.points, self.t0 = points, t0
+
+    def update(self, cm: ControllerManager, t: float, dt: float) -> None:
+        if not self.joints or not self.points:
+            return
+        elapsed = t - self.t0
+        goal = next((p for p in self.points if elapsed <= p.time), self.points[-1])
+        self.desired[self.joints[0]] = goal.positions[0]
+        cm.command(self.name, self.joints[0], "position", goal.positions[0])
+
+
+# by full type first (position_controllers/ holds both a group and a gripper controller), then package
+TYPES: dict[str, type[Controller]] = {
+    "position_controllers/GripperActionController": GripperActionController,
+    "parallel_gripper_action_controller/GripperActionController": GripperActionController,
+}
+
 KINDS = {
     "joint_state_broadcaster": JointStateBroadcaster,
     "joint_trajectory_controller": JointTrajectoryController,
@@ -167,7 +206,7 @@ class ControllerManager:
         self.hardware.on_activate()
 
     def spawn(self, name: str, type_: str, params: dict[str, Any], activate: bool = True) -> Controller:
-        cls = KINDS.get(type_.split("/")[0], Controller)
+        cls = TYPES.get(type_) or KINDS.get(type_.split("/")[0], Controller)
         c = cls(name, type_, params, self.trace)
         self.controllers[name] = c
         c.transition("load", "on_init", UNCONFIGURED)

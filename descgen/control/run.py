@@ -10,7 +10,7 @@ from ..findings import Finding, InputError
 from ..model import Robot
 from .evidence_check import run_record
 from .load import load_system
-from .manager import JointTrajectoryController, Point
+from .manager import GripperActionController, JointTrajectoryController, Point
 from .system import Plant
 from .trajectory import Trajectory
 from .verdict import Outcome
@@ -21,14 +21,15 @@ DEFAULT_TOLERANCE = {"prismatic": 0.01, "other": math.radians(3)}
 def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | None, plant: Plant) -> Outcome:
     cm = load_system(package, robot, plant)
     jtc = cm.controllers.get(trajectory.controller)
-    if not isinstance(jtc, JointTrajectoryController):
+    if not isinstance(jtc, JointTrajectoryController | GripperActionController):
         raise InputError(
             [
                 Finding(
                     "CTRL022",
                     "error",
-                    f"no joint_trajectory_controller named '{trajectory.controller}' in the controllers file",
-                    "name the arm's controller",
+                    f"no joint_trajectory_controller or gripper action controller named "
+                    f"'{trajectory.controller}' in the controllers file",
+                    "name the arm's or the gripper's controller",
                     "trajectory",
                     trajectory.where,
                 )
@@ -61,6 +62,7 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
     cm.step(0.0)  # one cycle so the controller sees measured state before the goal arrives
     jtc.follow(points, 0.0)
     out = Outcome(cm, record=run_record(package, trajectory.where.file, duration, plant))
+    settles = isinstance(jtc, GripperActionController)  # a gripper goal is judged when it is due
     kinds = {j.name: j.type for j in robot.joints}
     for name in jtc.joints:
         out.tracking[name] = 0.0
@@ -73,6 +75,11 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
             commanded = cm.by_name[name].commands.get("position", math.nan)
             measured = cm.state(name, "position")
             out.rows.append((t, name, desired, commanded, measured))
-            if not math.isnan(desired) and not math.isnan(measured):
+            if not math.isnan(desired) and not math.isnan(measured) and (not settles or _at_point(t, points, dt)):
                 out.tracking[name] = max(out.tracking[name], abs(desired - measured))
     return out
+
+
+def _at_point(t: float, points: list[Point], dt: float) -> bool:
+    """``t`` is the cycle at which a point (a gripper goal) is due."""
+    return any(abs(t - p.time) < dt / 2 for p in points)

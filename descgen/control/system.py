@@ -263,6 +263,54 @@ class Hardware(Node):
         return  # GenericSystem's write() does nothing; the plant reads commands in read()
 
 
+class HardwareSet(Hardware):
+    """Every hardware component of the description, one per ``<ros2_control>`` block, as the
+    resource manager runs them (resource_manager.cpp): each is its own lifecycle node (its own
+    transitions in the trace), each reads in turn, and only active non-sensor components are
+    written (a sensor component has no write()). The controller manager sees the union of
+    their joints; a mimic joint follows its leader inside its own component only."""
+
+    def __init__(self, parts: list[Hardware], trace: Trace, plant: Plant) -> None:
+        super().__init__("+".join(p.name for p in parts), "", {}, [j for p in parts for j in p.joints], trace, plant)
+        self.parts = parts
+        self.kinds: dict[str, str] = {}  # part name -> system | actuator | sensor
+
+    @property
+    def echoes_commands(self) -> bool:
+        return all(p.echoes_commands for p in self.parts)
+
+    def _sync(self) -> None:
+        # the set is active while any component is: the loop then reads and writes, and each
+        # component itself decides whether it takes part (as read()/write() check their state)
+        states = {p.state for p in self.parts}
+        self.state = ACTIVE if ACTIVE in states else next(iter(states), UNCONFIGURED)
+
+    def on_init(self) -> None:
+        for p in self.parts:
+            p.on_init()
+        self._sync()
+
+    def on_configure(self) -> None:
+        for p in self.parts:
+            p.on_configure()
+        self._sync()
+
+    def on_activate(self) -> None:
+        for p in self.parts:
+            p.on_activate()
+        self._sync()
+
+    def read(self, dt: float) -> None:
+        for p in self.parts:
+            p.read(dt)
+        self._sync()
+
+    def write(self) -> None:
+        for p in self.parts:
+            if p.state == ACTIVE and self.kinds.get(p.name, "system") != "sensor":
+                p.write()
+
+
 class ResourceManager:
     """Exclusive command-interface claims (resource_manager.cpp)."""
 

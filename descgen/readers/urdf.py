@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from pathlib import Path
 
 from lxml import etree
@@ -101,12 +102,13 @@ def _one_line(message: str) -> str:
 
 
 class _Reader:
-    def __init__(self, file: str) -> None:
+    def __init__(self, file: str, located: dict[etree._Element, Where] | None = None) -> None:
         self.file = file
+        self.located = located or {}  # where each element of an expanded Xacro was written
         self.findings: list[Finding] = []
 
     def where(self, e: etree._Element) -> Where:
-        return Where(self.file, line_of(e))
+        return self.located.get(e) or Where(self.file, line_of(e))
 
     def problem(self, e: etree._Element, message: str, hint: str, subject: str) -> None:
         self.findings.append(Finding("READ010", "error", message, hint, subject, self.where(e)))
@@ -306,7 +308,7 @@ class _Reader:
                     return None
                 return value
 
-            out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value")))
+            out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value"), ie.get("data_type")))
         return tuple(out)
 
     def ros2_control(self, blocks: list[etree._Element], root: etree._Element) -> m.Ros2Control | None:
@@ -374,10 +376,16 @@ def _material_name(visual: etree._Element) -> str | None:
     return None if mat is None else mat.get("name")
 
 
-def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
-    """The model of a URDF document and what could not be read (READ… findings)."""
+def read_urdf_text(
+    data: bytes, file: str, sources: Sequence[Where | None] | None = None
+) -> tuple[m.Robot, list[Finding]]:
+    """The model of a URDF document and what could not be read (READ… findings).
+
+    ``sources`` (an expanded Xacro's, :func:`descgen.readers.xacro_file.expand_located`)
+    are where each element was written, in document order; elements then point there
+    instead of at ``file``'s lines."""
     root = parse_xml(data, file)
-    r = _Reader(file)
+    r = _Reader(file, element_sources(root, sources) if sources is not None else None)
     if root.tag != "robot":
         raise InputError(
             [
@@ -421,8 +429,32 @@ def read_urdf_text(data: bytes, file: str) -> tuple[m.Robot, list[Finding]]:
         ros2_control=r.ros2_control(root.findall("ros2_control"), root),
         where=r.where(root),
         source_file=file,
+        sdf_preserved_joints=_sdf_preserved(root),
     )
     return robot, r.findings
+
+
+def _sdf_preserved(root: etree._Element) -> tuple[str, ...]:
+    """Joints named by ``<gazebo reference>`` with ``preserveFixedJoint`` or the legacy
+    ``disableFixedJointLumping`` set to true: sdformat does not lump them (parser_urdf.cc)."""
+    out: list[str] = []
+    for g in root.findall("gazebo"):
+        ref = g.get("reference")
+        for tag in ("preserveFixedJoint", "disableFixedJointLumping"):
+            e = g.find(tag)
+            if ref and e is not None and (e.text or "").strip() in ("true", "1") and ref not in out:
+                out.append(ref)
+    return tuple(out)
+
+
+def element_sources(root: etree._Element, sources: Sequence[Where | None]) -> dict[etree._Element, Where]:
+    """Each element of ``root`` (document order, root first) with its entry of ``sources``;
+    nothing when the two do not line up (then no element is pointed at a wrong line).
+    The dict holds the element proxies, so lxml hands out the same objects as keys."""
+    elements = list(root.iter(etree.Element))
+    if len(elements) != len(sources):
+        return {}
+    return {e: w for e, w in zip(elements, sources, strict=True) if w is not None}
 
 
 def read_urdf(path: Path, display: str | None = None) -> tuple[m.Robot, list[Finding]]:

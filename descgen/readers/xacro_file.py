@@ -15,6 +15,12 @@ else's file, so by default it is expanded in a sandbox: xacro still does the XML
 ``trusted=True`` (``--trust-xacro``) uses xacro's own evaluator for files the user trusts;
 only ``$(find)`` is still answered from ``--package-path``, since there is no ament index.
 xacro keeps its state in module globals, so one expansion runs at a time.
+
+In both modes every element of the expanded document also gets the place it was written
+(:func:`expand_located`): xacro's minidom keeps no line numbers, so its files are parsed by
+an expat builder that records file, line and column as DOM user data (which minidom copies
+onto clones of macro bodies and blocks, and never serialises), and each macro call adds
+its call site to the elements its body produced.
 """
 
 from __future__ import annotations
@@ -24,10 +30,11 @@ import os
 import re
 import threading
 import time
-from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
+from xml.dom import expatbuilder
 
 from ..findings import Finding, InputError, Where
 from . import xacro_eval as xe
@@ -377,6 +384,18 @@ def _line_of(file: str | None, needle: str) -> tuple[int, int]:
     return line, idx - (text.rfind("\n", 0, idx) + 1) + 1
 
 
+@dataclass(frozen=True)
+class Expansion:
+    """An expanded Xacro and where each of its elements was written.
+
+    ``sources[i]`` is the i-th element of ``xml`` in document order (the root first, as
+    lxml's ``root.iter()`` yields elements): the file, line and column of its start tag,
+    with ``via`` the macro calls that produced it, innermost first. None where unknown."""
+
+    xml: bytes
+    sources: tuple[Where | None, ...]
+
+
 def expand(
     path: Path,
     display: str,
@@ -385,6 +404,18 @@ def expand(
     trusted: bool = False,
 ) -> bytes:
     """The expanded XML of a Xacro file, or an InputError saying why it was refused."""
+    return expand_located(path, display, mappings, package_paths, trusted).xml
+
+
+def expand_located(
+    path: Path,
+    display: str,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Sequence[Path] = (),
+    trusted: bool = False,
+) -> Expansion:
+    """:func:`expand`, and where each element of the result was written. ``display`` names
+    the top file; an included file is named relative to it when it lies beside or below it."""
     import xacro
 
     top = Path(os.path.realpath(path))
@@ -398,8 +429,10 @@ def expand(
                 stack.enter_context(_find_from(package_paths))
                 if not trusted:
                     stack.enter_context(_sandboxed(box))
+                stack.enter_context(_locating(_namer(top, display)))
                 doc = xacro.process_file(str(path), mappings=dict(mappings or {}))
                 text = str(doc.toxml())
+                sources = _sources(doc.documentElement)
         except xe.RefusedError as exc:
             box.refusal = box.refusal or _Refusal(exc, str(top), "")
             raise InputError([_refusal_finding(box.refusal, top, display)]) from None
@@ -419,7 +452,121 @@ def expand(
                     )
                 ]
             ) from None
-    return text.encode("utf-8")
+    return Expansion(text.encode("utf-8"), sources)
+
+
+# --- where each element was written ---------------------------------------------------------
+
+_WHERE = "descgen.where"  # the DOM user-data key
+
+
+class _KeepWhere:
+    """minidom calls this when it clones a node (a macro body, an inserted block): the copy
+    was written where the original was."""
+
+    def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
+        if dst is not None:
+            dst.setUserData(key, data, self)
+
+
+_KEEP = _KeepWhere()
+
+
+class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
+    """minidom's own builder (what ``xml.dom.minidom.parse`` uses, so the document is the
+    same) that also records each element's start tag position."""
+
+    def __init__(self, file: str) -> None:
+        super().__init__()
+        self._file = file
+
+    def start_element_handler(self, name: str, attributes: list[str]) -> None:
+        super().start_element_handler(name, attributes)
+        parser = self.getParser()  # the one parsing now
+        where = Where(self._file, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
+        self.curNode.setUserData(_WHERE, where, _KEEP)
+
+
+def _namer(top: Path, display: str) -> Callable[[str], str]:
+    """How a file xacro opens is named in findings: the top file as the user gave it, a file
+    beside or below it relative to that, any other by its real path."""
+    import xacro
+
+    def name(filename: str) -> str:
+        real = Path(os.path.realpath(os.path.join(xacro.root_dir, filename)))
+        if real == top:
+            return display
+        if real.is_relative_to(top.parent):
+            return str(Path(display).parent / real.relative_to(top.parent))
+        return str(real)
+
+    return name
+
+
+def _elements(node: Any) -> Iterator[Any]:
+    """The element descendants of a DOM node in document order (not the node itself);
+    iterative, so a deep document cannot exhaust the stack here."""
+    stack = list(reversed(node.childNodes))
+    while stack:
+        n = stack.pop()
+        if n.nodeType == n.ELEMENT_NODE:
+            yield n
+            stack.extend(reversed(n.childNodes))
+
+
+def _sources(root: Any) -> tuple[Where | None, ...]:
+    return tuple(e.getUserData(_WHERE) for e in (root, *_elements(root)))
+
+
+def _stamp(call: Any, body: Any) -> None:
+    """The elements a macro call's body produced were also made by this call: add its site
+    to their chain. Blocks handed to the call are the caller's elements: they keep theirs."""
+    here: Where | None = call.getUserData(_WHERE)
+    if here is None:
+        return
+    link = (here.bare(), *here.via)
+    passed = {id(e.getUserData(_WHERE)) for e in _elements(call)}  # alive under `call`: ids stay unique
+    for e in _elements(body):
+        where: Where | None = e.getUserData(_WHERE)
+        if where is not None and id(where) not in passed:
+            e.setUserData(_WHERE, replace(where, via=(*where.via, *link)), _KEEP)
+
+
+@contextlib.contextmanager
+def _locating(name: Callable[[str], str]) -> Iterator[None]:
+    """xacro parsing with positions, and macro calls that extend the call chain."""
+    import xacro
+
+    original_parse = xacro.parse
+    original_call = xacro.handle_macro_call
+    original_replace = xacro.replace_node
+    calls: dict[int, Any] = {}  # macro call nodes being expanded, by id (the node keeps its id alive)
+
+    def parse(inp: Any, filename: str | None = None) -> Any:
+        if inp is not None or filename is None:
+            return original_parse(inp, filename)
+        # as xacro.parse opens a file, error included
+        try:
+            f = open(os.path.join(xacro.root_dir, filename))  # noqa: SIM115 (closed below)
+        except OSError as e:
+            xacro.filestack.pop()
+            raise xacro.XacroException(f"{e.strerror}: {e.filename}", exc=e) from None
+        with f:
+            return _LocatingBuilder(name(filename)).parseFile(f)
+
+    def handle_macro_call(node: Any, macros: Any, symbols: Any) -> Any:
+        if node.tagName.startswith("xacro:"):  # every other element is not a call: xacro returns False
+            calls[id(node)] = node
+        return original_call(node, macros, symbols)
+
+    def replace_node(node: Any, by: Any, content_only: bool = False) -> Any:
+        # a macro call ends by replacing its node with the expanded body
+        if calls.pop(id(node), None) is node and by is not None and by is not node:
+            _stamp(node, by)
+        return original_replace(node, by, content_only)
+
+    with _patched(xacro, parse=parse, handle_macro_call=handle_macro_call, replace_node=replace_node):
+        yield
 
 
 def _refusal_finding(refusal: _Refusal, top: Path, display: str) -> Finding:

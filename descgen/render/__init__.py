@@ -4,9 +4,14 @@ from __future__ import annotations
 
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 import jinja2
+from jinja2.exceptions import SecurityError
+from jinja2.sandbox import ImmutableSandboxedEnvironment
 
+from ..findings import Finding, InputError, Where
+from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
 from . import context, header
 from .formatting import comment, dot, mdcell, mermaid, num, pyinner, pystr, vec, yamlstr
@@ -18,13 +23,18 @@ def default_templates() -> Path:
     return Path(str(resources.files("descgen.templates")))
 
 
-def environment(templates: Path | None = None) -> jinja2.Environment:
-    """Templates from ``templates`` (a team's overrides, by file name) before the defaults."""
+def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja2.Environment:
+    """Templates from ``templates`` (a team's overrides, by file name) before the defaults.
+
+    ``sandboxed``: the overrides were named by a spec (``templates:``), which is someone
+    else's data, so they render in jinja2's immutable sandbox (no ``__class__`` walks to
+    Python, no mutation); a folder named with --templates is the user's own code."""
     loaders: list[jinja2.BaseLoader] = []
     if templates is not None:
         loaders.append(jinja2.FileSystemLoader(str(templates)))
     loaders.append(jinja2.FileSystemLoader(str(default_templates())))
-    env = jinja2.Environment(
+    make = ImmutableSandboxedEnvironment if sandboxed else jinja2.Environment
+    env = make(
         loader=jinja2.ChoiceLoader(loaders),
         autoescape=jinja2.select_autoescape(enabled_extensions=XML_TEMPLATES, default_for_string=False, default=False),
         undefined=jinja2.StrictUndefined,
@@ -65,12 +75,49 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
     return files
 
 
-def render_package(robot: Robot, spec_display: str, templates: Path | None = None) -> dict[str, str]:
+def install_dirs(robot: Robot) -> list[str]:
+    """Every folder the package has (CMake installs them all to share/<package>): those of the
+    generated files, and ``meshes`` when the robot has meshes of its own."""
+    folders = {path.split("/")[0] for path, _, _ in outputs(robot) if "/" in path}
+    return sorted(folders | ({MESH_FOLDER} if own_meshes(robot) else set()))
+
+
+def render_package(
+    robot: Robot, spec_display: str, templates: Path | None = None, sandboxed: bool = False
+) -> dict[str, str]:
     """Every file of ``<robot>_description/``, path -> text, each with its header."""
-    env = environment(templates)
+    env = environment(templates, sandboxed)
     contexts = {False: context.build(robot, xacro=False), True: context.build(robot, xacro=True)}
+    for ctx in contexts.values():
+        ctx["package"]["install_dirs"] = install_dirs(robot)
     out: dict[str, str] = {}
     for path, template, xacro in outputs(robot):
-        body = env.get_template(template).render(contexts[xacro])
+        body = _render(env, template, contexts[xacro], templates)
         out[path] = header.add(path, body, spec_display, robot.spec_hash or "0" * 64)
     return dict(sorted(out.items()))
+
+
+def _render(env: jinja2.Environment, template: str, ctx: dict[str, Any], templates: Path | None) -> str:
+    """One template rendered; an override that does not parse, fails, or (sandboxed) reaches
+    for what the sandbox refuses is an input error at the template, never a traceback."""
+    try:
+        return env.get_template(template).render(ctx)
+    except jinja2.TemplateError as exc:
+        file = getattr(exc, "filename", None) or str((templates or default_templates()) / template)
+        line = getattr(exc, "lineno", None) or 0
+        refused = isinstance(exc, SecurityError)
+        raise InputError(
+            [
+                Finding(
+                    "GEN061",
+                    "error",
+                    f"template {template} "
+                    + ("asks for what the template sandbox refuses" if refused else "failed")
+                    + f": {exc.message or type(exc).__name__}",
+                    "templates named by a spec render in jinja2's sandbox: use only the context's values and "
+                    "filters; or fix the template",
+                    f"file:{template}",
+                    Where(file, line),
+                )
+            ]
+        ) from None

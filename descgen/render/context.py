@@ -5,9 +5,13 @@ from __future__ import annotations
 from typing import Any
 
 import yaml
+from markupsafe import Markup
 
 from .. import derive, display
+from ..importer.passthrough import for_xacro
+from ..mesh_paths import other_packages
 from ..model import DisabledPair, Robot
+from .control_blocks import control_blocks, control_depends
 from .formatting import num, vec, xacro_text
 from .views import Values, items
 
@@ -139,6 +143,45 @@ def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]
     return nodes, rows
 
 
+GZ_SIM_PLUGIN = ("gz_ros2_control-system", "gz_ros2_control::GazeboSimROS2ControlPlugin")
+
+
+def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = None) -> dict[str, Any]:
+    """Sensors, gpios and hardware variants of the ros2_control block, with escaped texts.
+
+    The Xacro gets every variant (selected by ``hardware:=``) and the gz_ros2_control sim
+    plugin under ``hardware:=gazebo``; a plain URDF gets the block of the model's own plugin,
+    and the sim plugin only when that plugin is Gazebo's and ``controllers_file`` is given (the
+    proof of the gazebo variant; the committed URDF is the mock variant)."""
+    from ..spec.models import GZ_PLUGIN
+
+    rc = robot.ros2_control
+    text = xacro_text if xacro else str
+    if rc is None:
+        return {"control_sensors": [], "control_gpios": [], "hw_variants": [], "hw_variant_names": [], "gz_sim": None}
+
+    def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
+        return [(k, text(v)) for k, v in items]
+
+    names = [v.name for v in rc.variants]
+    package = package_name(robot)
+    if xacro:
+        gz_file = f"$(find {package})/config/ros2_controllers.yaml" if "gazebo" in names else None
+    else:
+        gz_file = controllers_file if rc.plugin == GZ_PLUGIN else None
+    return {
+        "control_sensors": [{"name": c.name, "state": c.state, "params": params(c.params)} for c in rc.sensors],
+        "control_gpios": rc.gpios,
+        "hw_variants": [{"name": v.name, "plugin": v.plugin, "params": params(v.params)} for v in rc.variants]
+        if xacro
+        else [],
+        "hw_variant_names": names,
+        "gz_sim": None
+        if gz_file is None
+        else {"filename": GZ_SIM_PLUGIN[0], "name": GZ_SIM_PLUGIN[1], "parameters": gz_file},
+    }
+
+
 def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     """Context for one template family: ``xacro`` chooses property references and
     xacro-escaped free text over plain numbers and text."""
@@ -158,8 +201,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     depends = list(_BASE_DEPENDS)
     if rc is not None:
         depends += _CONTROL_DEPENDS + sorted({_controller_package(c.type) for c in controllers})
-        if rc.plugin.startswith("mock_components/"):
-            depends.append("hardware_interface")
+        depends += control_depends(rc)
     sem = robot.semantic
     disabled: list[DisabledPair] = []
     if sem is not None:
@@ -170,7 +212,6 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         disabled += list(sem.disabled_collisions)
     root = robot.root() or (robot.links[0].name if robot.links else "base_link")
     extent = max((abs(c) for j in robot.joints for c in j.origin.xyz), default=1.0)
-    install_dirs = ["config", "launch", "rviz", "urdf"] + (["srdf"] if sem is not None else [])
     return {
         "robot": robot,
         "description": text(robot.description) if robot.description else None,
@@ -180,11 +221,15 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "materials": materials,
         "ros2_control": rc,
         "hw_params": [(k, text(v)) for k, v in rc.params] if rc else [],
+        "control_blocks": control_blocks(robot, xacro),
         "control_joints": derive.interfaces_with_limits(robot),
         "control_mimic": {cj.name: cj.mimic for cj in rc.joints if cj.mimic is not None} if rc else {},
+        **control_extras(robot, xacro),
         "controllers": controllers,
         "plugin": rc.plugin if rc else "",
         "controllers_yaml": controllers_yaml(robot),
+        # verbatim XML, already checked (spec/models.py); Xacro: every $ stays data
+        "passthrough": [Markup(for_xacro(x) if xacro else x) for x in robot.passthrough],
         "semantic": sem,
         "disabled": disabled,
         "fixed_frame": root,
@@ -200,7 +245,9 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
             "maintainer": robot.package.maintainer,
             "email": robot.package.email,
             "license": robot.package.license,
-            "exec_depends": sorted(set(depends)),
-            "install_dirs": sorted(install_dirs),
+            # another package's meshes are used from that package, installed beside this one
+            "exec_depends": sorted({*depends, *other_packages(robot)} - {package_name(robot)}),
+            # every folder of the package (render_package fills it in: it knows the files)
+            "install_dirs": [],
         },
     }

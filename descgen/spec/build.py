@@ -50,7 +50,7 @@ class Builder:
         joints += part_joints + sensor_joints
         # every joint exists now: values given per joint (poses, initial positions) take its unit
         conv.joint_types = {j.name: j.type for j in joints}
-        rc = ros2_control(conv, spec.ros2_control) if spec.ros2_control else None
+        rc = ros2_control(conv, spec.ros2_control, {lk.name for lk in links}) if spec.ros2_control else None
         poses = tuple(known_pose(conv, kp, ("known_poses", i)) for i, kp in enumerate(spec.known_poses))
         robot = m.Robot(
             spec.name,
@@ -75,6 +75,7 @@ class Builder:
                 m.JointStateSource(js.node, js.kind, tuple(js.joints), conv.where(("frames", "joint_state_sources", i)))
                 for i, js in enumerate(spec.frames.joint_state_sources)
             ),
+            passthrough=tuple(p.xml for p in spec.passthrough),
         )
         if spec.semantic is None:
             return robot

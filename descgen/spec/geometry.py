@@ -24,4 +24,6 @@ def geometry(g: s.GeometrySpec) -> m.Geometry:
         return m.Sphere(g.sphere.r)
     assert g.mesh is not None  # GeometrySpec guarantees exactly one
     sx, sy, sz = g.mesh.scale
-    return m.Mesh(g.mesh.filename, (float(sx), float(sy), float(sz)))
+    size = None if g.mesh.size is None else (g.mesh.size[0].si, g.mesh.size[1].si, g.mesh.size[2].si)
+    tolerance = None if g.mesh.tolerance is None else g.mesh.tolerance.si
+    return m.Mesh(g.mesh.filename, (float(sx), float(sy), float(sz)), size, tolerance)

@@ -1,13 +1,17 @@
-"""A link's inertial: explicit, or from its first visual or collision primitive.
+"""A link's inertial: explicit, or from its first visual or collision shape.
 
-``from: collision`` / ``from: visual`` takes the primitive's uniform-density tensor about
+``from: collision`` / ``from: visual`` takes the shape's uniform-density tensor about
 its centroid, turned into link axes (``descgen.inertia``); the centre of mass is the
-inertial origin if given, else the primitive's centre.
+inertial origin if given, else the shape's centroid. A mesh shape must be watertight
+(INER030) and readable (INER031): its solid is integrated triangle by triangle.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .. import inertia as mass_props
+from .. import mesh_paths, meshes
 from .. import model as m
 from ..yamlsource import Path_
 from . import models as s
@@ -39,6 +43,8 @@ def inertial(
         )
         return m.Inertial(mass, pose(spec.origin), None, conv.where(path))
     shape = shapes[0]
+    if isinstance(shape.geometry, m.Mesh):
+        return _from_mesh(conv, spec, shape.geometry, shape.origin, path)
     tensor_or_none = mass_props.in_link_frame(shape.geometry, mass, shape.origin) if shape.geometry else None
     if tensor_or_none is None:
         conv.error(
@@ -50,3 +56,56 @@ def inertial(
         )
     com = shape.origin.xyz if spec.origin is None else pose(spec.origin).xyz
     return m.Inertial(mass, m.Pose(com, (0.0, 0.0, 0.0)), tensor_or_none, conv.where(path))
+
+
+def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Pose, path: Path_) -> m.Inertial:
+    """Mass given, centre of mass and tensor from the watertight mesh at uniform density."""
+    subject = ".".join(map(str, path))
+    where = conv.where((*path, "from"))
+    where_file = _resolved(conv, mesh.filename)
+    if where_file.state != "ok" and Path(conv.doc.file).is_file():
+        # the spec loader reports a mesh it cannot find (mesh_paths.resolve_spec, SPEC060-063)
+        return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
+    file = where_file.path if where_file.state == "ok" else None
+    problem = f"mesh '{mesh.filename}' is not a readable file beside the spec" if file is None else None
+    loaded = None
+    if file is not None:
+        try:
+            loaded = meshes.load(file)
+        except meshes.MeshError as exc:
+            problem = f"mesh '{mesh.filename}': {exc}"
+    if loaded is None:
+        conv.error("INER031", f"cannot compute inertia from {spec.from_}: {problem}", _GIVE, subject, where)
+        return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
+    if not loaded.facts.watertight:
+        conv.error(
+            "INER030",
+            f"cannot compute inertia from {spec.from_}: mesh '{mesh.filename}' is not watertight "
+            f"({loaded.facts.open_edges} open edges, or inconsistent winding), so it bounds no solid",
+            "close the mesh in your CAD tool (or use its convex hull), or " + _GIVE,
+            subject,
+            where,
+        )
+        return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
+    found = mass_props.from_mesh(
+        loaded.vertices * (loaded.facts.unit_meter or 1.0), loaded.faces, spec.mass.si, mesh.scale, origin
+    )
+    if found is None:
+        conv.error("INER030", f"mesh '{mesh.filename}' bounds no volume", _GIVE, subject, where)
+        return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
+    com, tensor = found
+    com = com if spec.origin is None else pose(spec.origin).xyz
+    return m.Inertial(spec.mass.si, m.Pose(com, (0.0, 0.0, 0.0)), tensor, conv.where(path))
+
+
+_GIVE = "give inertia explicitly (from your CAD tool), or use a primitive"
+
+
+def _resolved(conv: Converter, name: str) -> mesh_paths.Resolved:
+    """The mesh file as resolve_spec finds it: beside the spec, or package:// in the
+    spec's recorded package_paths (the command line's --package-path is not known here)."""
+    spec = Path(conv.doc.file)
+    recorded = conv.doc.data.get("package_paths") if isinstance(conv.doc.data, dict) else None
+    folders = [mesh_paths.spec_folder(spec, w) for w in recorded or [] if isinstance(w, str)]
+    base = spec.resolve().parent
+    return mesh_paths.resolve(name, base, base, [f for f in folders if f is not None])

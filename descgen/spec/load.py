@@ -5,6 +5,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -13,6 +14,7 @@ from pydantic import ValidationError
 
 from ..audit import run as run_rules
 from ..findings import Finding, InputError, errors
+from ..mesh_paths import resolve_spec
 from ..model import Robot
 from ..units import Range
 from ..yamlsource import Document, Path_, load, loads
@@ -32,21 +34,33 @@ class Loaded:
     findings: tuple[Finding, ...]  # warnings and infos from the whole-model rules
 
 
-def load_spec(path: str | Path, display: str | None = None, rules: bool = True) -> Loaded:
+def load_spec(
+    path: str | Path, display: str | None = None, rules: bool = True, package_paths: Sequence[Path] = ()
+) -> Loaded:
     """Read, validate and build one spec. Raises :class:`InputError` with every error.
 
     With ``rules=False`` the whole-model rules are not run (the audit runs them itself
-    and reports their errors as findings, not as unusable input)."""
+    and reports their errors as findings, not as unusable input). Mesh files are resolved
+    beside the spec and in its ``package_paths:`` (then ``package_paths``), see
+    descgen/mesh_paths.py; a spec given as text has no folder, so its meshes are not."""
     p = Path(path)
     doc = load(p, display or str(path))
-    return from_document(doc, rules)
+    return from_document(doc, rules, _Place(p, tuple(package_paths)))
 
 
 def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loaded:
     return from_document(loads(text, file), rules)
 
 
-def from_document(doc: Document, rules: bool = True) -> Loaded:
+@dataclass(frozen=True)
+class _Place:
+    """Where a spec file lies, for resolving the files it names (meshes)."""
+
+    spec: Path
+    package_paths: tuple[Path, ...] = ()
+
+
+def from_document(doc: Document, rules: bool = True, place: _Place | None = None) -> Loaded:
     if not isinstance(doc.data, dict):
         raise InputError(
             [
@@ -66,9 +80,9 @@ def from_document(doc: Document, rules: bool = True) -> Loaded:
     except ValidationError as exc:
         problems += findings_from(exc, doc, RobotSpec)
         # report the rest of the spec too, in the same run, if the model can still be built
-        problems += _rules_despite(exc, doc, ranges) if rules else []
+        problems += _rules_despite(exc, doc, ranges, place) if rules else []
         raise InputError(_ordered(_unique(problems))) from None
-    robot, built = _build(doc, spec, ranges)
+    robot, built = _build(doc, spec, ranges, place)
     problems += built
     findings = run_rules(robot, stage="input") if rules else []
     bad = _bad_paths(doc, built)
@@ -80,10 +94,15 @@ def from_document(doc: Document, rules: bool = True) -> Loaded:
     return Loaded(robot, spec, doc, tuple(f for f in findings if f.severity != "error"))
 
 
-def _build(doc: Document, spec: RobotSpec, ranges: dict[str, Range]) -> tuple[Robot, list[Finding]]:
+def _build(
+    doc: Document, spec: RobotSpec, ranges: dict[str, Range], place: _Place | None = None
+) -> tuple[Robot, list[Finding]]:
     builder = Builder(doc, spec, ranges)
     robot = builder.build()
     problems = list(builder.findings)
+    if place is not None:  # before the rules, so they see the files (and a missing one is an input error)
+        robot, unresolved = resolve_spec(robot, spec, doc.where, place.spec, place.package_paths)
+        problems += unresolved
     if spec.require_sources:
         problems += missing_sources(doc, spec)
     digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()
@@ -107,7 +126,9 @@ def _build(doc: Document, spec: RobotSpec, ranges: dict[str, Range]) -> tuple[Ro
 _STAND_INS = (0.0, 0.123)  # SI magnitudes: zero, and a small value plausible for every kind
 
 
-def _rules_despite(exc: ValidationError, doc: Document, ranges: dict[str, Range]) -> list[Finding]:
+def _rules_despite(
+    exc: ValidationError, doc: Document, ranges: dict[str, Range], place: _Place | None = None
+) -> list[Finding]:
     bad: list[Path_] = []
     drop: list[Path_] = []
     for err in exc.errors(include_url=False):
@@ -125,7 +146,7 @@ def _rules_despite(exc: ValidationError, doc: Document, ranges: dict[str, Range]
             spec = RobotSpec.model_validate(data, context={"ranges": ranges})
         except ValidationError:
             return []
-        robot, built = _build(doc, spec, ranges)
+        robot, built = _build(doc, spec, ranges, place)
         every_bad = [*bad, *drop, *_bad_paths(doc, built)]
         judged = [f for f in run_rules(robot, stage="input") if not _inside(f, doc, every_bad)]
         runs.append(errors([*built, *judged]))

@@ -176,8 +176,14 @@ class SphereSpec(_Round):
 
 
 class MeshSpec(Base):
+    """A mesh file. ``size`` is what you measured of the part (the scaled mesh's bounding box
+    extents along the mesh's x, y, z); the file is checked against it within ``tolerance``
+    (default 1 mm), so a mesh exported in millimetres or inches is caught (GEOM030)."""
+
     filename: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]
     scale: tuple[Number, Number, Number] = (1.0, 1.0, 1.0)
+    size: tuple[Size, Size, Size] | None = None
+    tolerance: Tolerance | None = None
 
 
 class GeometrySpec(Base):
@@ -383,10 +389,36 @@ class InterfaceLimitSpec(Base):
     max: Raw | None = None
 
 
+JointInterfaceName = Literal["position", "velocity", "acceleration", "effort"]
+# interfaces whose params have a unit descgen knows per joint type (acceleration: name only)
+ParamInterfaceName = Literal["position", "velocity", "effort"]
+DataType = Literal["double", "bool", "float32", "uint8", "int8", "uint16", "int16", "uint32", "int32"]
+
+
+class JointCommandSpec(Base):
+    """A joint command interface with its ros2_control params. ``min``/``max`` (in the units of
+    the joint and interface: ``90 deg/s``, ``20 N``) replace the ones taken from the joint limits;
+    ros2_control reads them only on command interfaces (hardware_interface component_parser.cpp)."""
+
+    name: ParamInterfaceName
+    data_type: DataType | None = None
+    min: Raw | None = None
+    max: Raw | None = None
+
+
+class JointStateSpec(Base):
+    """A joint state interface; ``initial_value`` in the joint's units (``position`` may use the
+    joint's ``initial_position`` instead, not both)."""
+
+    name: ParamInterfaceName
+    data_type: DataType | None = None
+    initial_value: Raw | None = None
+
+
 class ControlJointSpec(Base):
     name: Name
-    command: list[Literal["position", "velocity", "acceleration", "effort"]] = []
-    state: list[Literal["position", "velocity", "acceleration", "effort"]] = []
+    command: list[JointInterfaceName | JointCommandSpec] = []
+    state: list[JointInterfaceName | JointStateSpec] = []
     initial_position: Raw | None = None
     on_limit: Literal["reject", "clip"] = "reject"
     # Jazzy's ros2_control <joint mimic="...">: unset, a URDF <mimic> joint is a mimic joint
@@ -395,9 +427,52 @@ class ControlJointSpec(Base):
     source: Source | None = None
 
 
+Plugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")]
+HwParams = dict[Name, Annotated[str | int | float | bool, BeforeValidator(_one_line)]]
+MOCK_PLUGIN = "mock_components/GenericSystem"
+GZ_PLUGIN = "gz_ros2_control/GazeboSimSystem"
+
+
+class HardwareVariantSpec(Base):
+    """The ``<hardware>`` of one value of the Xacro argument ``hardware`` (gazebo or real)."""
+
+    plugin: Plugin | None = None  # gazebo: gz_ros2_control/GazeboSimSystem when left out
+    params: HwParams = {}
+
+
 class HardwareSpec(Base):
-    plugin: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")] = "mock_components/GenericSystem"
-    params: dict[Name, Annotated[str | int | float | bool, BeforeValidator(_one_line)]] = {}
+    """``plugin``/``params`` are the default hardware. With ``variants``, they are the ``mock``
+    variant and the generated Xacro takes ``hardware:=mock|gazebo|real`` (default mock)."""
+
+    plugin: Plugin = MOCK_PLUGIN
+    params: HwParams = {}
+    variants: dict[Literal["gazebo", "real"], HardwareVariantSpec] = {}
+
+    @model_validator(mode="after")
+    def _variants_known(self) -> HardwareSpec:
+        if self.variants and self.plugin != MOCK_PLUGIN:
+            raise error(
+                "SPEC080",
+                f"with variants, hardware.plugin is the mock variant, but it is '{self.plugin}'",
+                f"write plugin: {MOCK_PLUGIN} and put the vendor plugin under variants.real",
+            )
+        gz = self.variants.get("gazebo")
+        if gz is not None and gz.plugin not in (None, GZ_PLUGIN):
+            raise error(
+                "SPEC081",
+                f"variants.gazebo.plugin is '{gz.plugin}', but Jazzy simulates with {GZ_PLUGIN}",
+                f"leave plugin out or write {GZ_PLUGIN} (gazebo_ros2_control is Gazebo Classic, not in Jazzy)",
+            )
+        real = self.variants.get("real")
+        stand_ins = ("mock_components", "gz_ros2_control")
+        if real is not None and (real.plugin is None or real.plugin.split("/")[0] in stand_ins):
+            raise error(
+                "SPEC082",
+                f"variants.real.plugin is {repr(real.plugin) if real.plugin else 'missing'}: "
+                "the real variant names the vendor's hardware plugin",
+                "write the driver's plugin, e.g. plugin: my_robot_driver/MyRobotSystem",
+            )
+        return self
 
 
 ParamValue = Any
@@ -441,12 +516,68 @@ class ControllerSpec(Base):
         return self
 
 
+INTERFACE_PATTERN = r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*$"
+InterfaceName = Annotated[str, StringConstraints(pattern=INTERFACE_PATTERN, max_length=128)]
+
+
+class InterfaceSpec(Base):
+    """A sensor or gpio interface with its ros2_control parameters (data_type, initial_value,
+    min, max: plain numbers, as ros2_control parses them)."""
+
+    name: InterfaceName
+    data_type: DataType | None = None
+    initial_value: Number | None = None
+    min: Number | None = None
+    max: Number | None = None
+
+
+Iface = InterfaceName | InterfaceSpec
+
+
+class ControlSensorSpec(Base):
+    """A ros2_control ``<sensor>``. ``kind: imu`` / ``force_torque`` fill ``state`` with the
+    interfaces the IMU / force-torque broadcasters read when it is left empty."""
+
+    name: Name
+    kind: Literal["imu", "force_torque", "generic"] = "generic"
+    frame: Name | None = None  # the link it measures in; written as its frame_id param
+    state: list[Iface] = []
+    params: HwParams = {}
+    source: Source | None = None
+
+
+class GpioSpec(Base):
+    name: Name
+    command: list[Iface] = []
+    state: list[Iface] = []
+    source: Source | None = None
+
+
+class Ros2ControlBlockSpec(Base):
+    """One more ``<ros2_control>`` block (one hardware component, e.g. a gripper on its own bus);
+    its joints, sensors and gpios belong to no other block."""
+
+    name: Name
+    type: Literal["system", "actuator", "sensor"] = "system"
+    hardware: HardwareSpec = HardwareSpec()
+    joints: list[ControlJointSpec] = []
+    sensors: list[ControlSensorSpec] = []
+    gpios: list[GpioSpec] = []
+    source: Source | None = None
+
+
 class Ros2ControlSpec(Base):
+    """The first ``<ros2_control>`` block, the controller manager's rate and the controllers;
+    ``blocks`` lists further hardware components (written after the first)."""
+
     name: Name
     type: Literal["system", "actuator", "sensor"] = "system"
     hardware: HardwareSpec = HardwareSpec()
     update_rate: Frequency
     joints: list[ControlJointSpec] = []
+    sensors: list[ControlSensorSpec] = []
+    gpios: list[GpioSpec] = []
+    blocks: list[Ros2ControlBlockSpec] = []
     controllers: list[ControllerSpec] = []
     source: Source | None = None
 
@@ -459,6 +590,8 @@ class ChainSpec(Base):
 class GroupSpec(Base):
     name: Name
     chain: ChainSpec | None = None
+    # more chains of the same group (an SRDF group may hold several; descgen import writes them)
+    chains: list[ChainSpec] = []
     links: list[Name] = []
     joints: list[Name] = []
     subgroups: list[Name] = []
@@ -594,6 +727,23 @@ class PackageSpec(Base):
     ] = "Apache-2.0"
 
 
+def _passthrough_xml(xml: str) -> str:
+    from ..importer.passthrough import problem
+
+    why = problem(xml)
+    if why is not None:
+        raise error("IMP010", f"pass-through XML {why}", "write one plain XML element, as descgen import keeps it")
+    return xml
+
+
+class PassthroughSpec(Base):
+    """One XML element the spec cannot express (a <gazebo> tag, a <transmission>, ...),
+    written verbatim into the URDF; in the Xacro every ``$`` stays data (never evaluated)."""
+
+    xml: Annotated[str, AfterValidator(_text), AfterValidator(_passthrough_xml)]
+    source: Source | None = None
+
+
 def _some_links(links: list[LinkSpec]) -> list[LinkSpec]:
     # parts and sensors hang below a link of links:, so a robot needs at least one there
     if not links:
@@ -624,6 +774,13 @@ class RobotSpec(Base):
     semantic: SemanticSpec | None = None
     known_poses: list[KnownPoseSpec] = []
     frames: FramesSpec = FramesSpec()
+    # Folders relative to the spec (inside the project) that hold the ROS packages its
+    # ``package://`` meshes name; recorded so every command resolves them alike (mesh_paths.py).
+    package_paths: list[Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]] = []
+    # A folder of template overrides relative to the spec, so generate and check use the same;
+    # rendered sandboxed, since a spec is someone else's data (--templates is not).
+    templates: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)] | None = None
+    passthrough: list[PassthroughSpec] = []
 
 
 __all__ = ["Measured", "RobotSpec"]

@@ -35,7 +35,7 @@ def semantic(conv: Converter, sem: s.SemanticSpec, poses: tuple[m.KnownPose, ...
             g.name,
             tuple(g.links),
             tuple(g.joints),
-            ((g.chain.base, g.chain.tip),) if g.chain else (),
+            (((g.chain.base, g.chain.tip),) if g.chain else ()) + tuple((c.base, c.tip) for c in g.chains),
             tuple(g.subgroups),
             conv.where((*base, "groups", i)),
         )

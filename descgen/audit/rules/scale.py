@@ -3,24 +3,16 @@
 from __future__ import annotations
 
 import math
-import statistics
 from collections.abc import Iterator
 
 from ...findings import Finding
 from ...model import Mesh, Robot
-from ...physics import dims
+from ...physics import dims, robot_scale
 from ..registry import at, rule
 
 FACTOR = 50.0  # ×1000 mistakes land far beyond this; real designs stay far below it
 FLOOR = 1.0  # metres: never flag anything shorter
 _PRIMITIVES = ("cube", "box", "cylinder", "sphere")  # unit shapes scaled to size: the scale is the size
-
-
-def robot_scale(robot: Robot) -> float:
-    """Median length of the non-zero joint offsets: the size of a typical link."""
-    lengths = [math.hypot(*j.origin.xyz) for j in robot.joints]
-    lengths = [x for x in lengths if x > 1e-4]
-    return statistics.median(lengths) if lengths else 0.1
 
 
 @rule("UNIT011", "implausible-offset", "error")

@@ -1,5 +1,5 @@
 # generated from specs/warehouse_arm.yaml by descgen — do not edit
-# descgen spec-sha256=0c7b9f63f37b6c967cc30c45d944c766d2746c769df117e42675b825f43eb34a content-sha256=3fadbfc4dcf30c366bb302a292800788c3a62a32b6a4f92f021d2496309d4c98
+# descgen spec-sha256=c4aac8d73002628e66c50e8ad719d7187036bb59715bd19bf0d0c7e04180e245 content-sha256=3fadbfc4dcf30c366bb302a292800788c3a62a32b6a4f92f021d2496309d4c98
 """Run warehouse_arm on ros2_control (mock_components/GenericSystem): robot_state_publisher,
 ros2_control_node and the controller spawners."""
 

@@ -1,5 +1,5 @@
 # generated from specs/warehouse_arm.yaml by descgen — do not edit
-# descgen spec-sha256=0c7b9f63f37b6c967cc30c45d944c766d2746c769df117e42675b825f43eb34a content-sha256=99187bf15dd537e26bead8a077acc6fc87f1c93cc5e05ea46b0f02ecf3c7ca4b
+# descgen spec-sha256=c4aac8d73002628e66c50e8ad719d7187036bb59715bd19bf0d0c7e04180e245 content-sha256=99187bf15dd537e26bead8a077acc6fc87f1c93cc5e05ea46b0f02ecf3c7ca4b
 """Show warehouse_arm in RViz: robot_state_publisher, joint_state_publisher_gui, rviz2."""
 
 from launch import LaunchDescription

@@ -1,0 +1,108 @@
+"""What the spec cannot express (Gazebo tags, transmissions, ``<ros2_control>``, unknown
+tags), kept as XML text and re-emitted verbatim by generate.
+
+Pass-through text is data from someone else. In the Xacro output every ``$`` of a text or
+an attribute becomes ``${'$'}`` (xacro evaluates that to a literal dollar), so no
+``${...}``/``$(...)`` in it is ever evaluated; comments are left alone (xacro keeps them
+verbatim). Elements in the xacro namespace are refused, since xacro would run them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from lxml import etree
+
+from ..findings import Where
+from ..xmlcompare import line_of
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+# what the spec itself expresses: a pass-through of these would duplicate the robot's elements
+OWN_TAGS = frozenset(("robot", "link", "joint", "material"))
+MAX_CHARS = 1_000_000  # one pass-through element; a description is bounded too (safeio)
+
+
+@dataclass(frozen=True)
+class Kept:
+    tag: str
+    xml: str
+    line: int
+    where: Where | None = None  # where it was written (an expanded Xacro's source line), if known
+
+
+def _parser() -> etree.XMLParser:
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
+
+
+def problem(xml: str) -> str | None:
+    """Why ``xml`` cannot be a pass-through element (None if it can)."""
+    if len(xml) > MAX_CHARS:
+        return f"is {len(xml)} characters long; a pass-through element is at most {MAX_CHARS}"
+    if "<!" in xml.replace("<!--", ""):
+        return "holds a DOCTYPE, entity or CDATA declaration"
+    try:
+        e = etree.fromstring(xml.encode("utf-8"), _parser())
+    except etree.XMLSyntaxError as exc:
+        return f"is not one well-formed XML element ({exc.msg})"
+    if not isinstance(e.tag, str) or (etree.QName(e).localname in OWN_TAGS and etree.QName(e).namespace is None):
+        return f"is a <{e.tag}>, which the spec writes itself"
+    for x in e.iter():
+        if not isinstance(x.tag, str):
+            continue
+        if etree.QName(x).namespace == XACRO_NS or (x.prefix or "") == "xacro" or str(x.tag).startswith("xacro:"):
+            return f"holds <{x.tag}>, a xacro instruction (xacro would run it)"
+        if any(str(k).startswith("{" + XACRO_NS) for k in x.attrib):
+            return "holds a xacro-namespace attribute"
+    return None
+
+
+def collect(
+    root: etree._Element, locate: Callable[[etree._Element], Where | None] = lambda e: None
+) -> tuple[list[Kept], list[Kept]]:
+    """(kept, refused): every element below ``<robot>`` the spec does not write itself;
+    ``locate`` says where an element was written (the Xacro source), when it knows."""
+    kept: list[Kept] = []
+    refused: list[Kept] = []
+    for e in root:
+        if not isinstance(e.tag, str) or e.tag in OWN_TAGS:
+            continue  # comments and processing instructions are not robot data
+        xml = etree.tostring(e, encoding="unicode", with_tail=False)
+        item = Kept(str(e.tag), xml, line_of(e), locate(e))
+        (refused if problem(xml) else kept).append(item)
+    return kept, refused
+
+
+def for_xacro(xml: str) -> str:
+    """``xml`` with every ``$`` of its texts and attributes written ``${'$'}``."""
+    e = etree.fromstring(xml.encode("utf-8"), _parser())
+    for x in e.iter():
+        if x is not e and x.tail:
+            x.tail = x.tail.replace("$", "${'$'}")
+        if not isinstance(x.tag, str):
+            continue  # a comment's text stays as written
+        if x.text:
+            x.text = x.text.replace("$", "${'$'}")
+        for k, v in x.attrib.items():
+            x.set(k, str(v).replace("$", "${'$'}"))
+    return etree.tostring(e, encoding="unicode", with_tail=False)
+
+
+Canon = tuple[object, ...]
+
+
+def canonical(e: etree._Element) -> Canon:
+    """The XML data of an element: tag, attributes, non-blank text, children, comments; what
+    pretty-printing (xacro re-indents) cannot change."""
+
+    def text(t: str | None) -> str:
+        return "" if t is None or not t.strip() else t
+
+    children = tuple((canonical(c), text(c.tail)) for c in e)
+    if not isinstance(e.tag, str):
+        return ("#comment", e.text or "")
+    return (e.tag, tuple(sorted(e.attrib.items())), text(e.text), children)
+
+
+def canonical_text(xml: str) -> Canon:
+    return canonical(etree.fromstring(xml.encode("utf-8"), _parser()))

@@ -1,0 +1,412 @@
+"""``descgen import``: a URDF or Xacro (+ SRDF) -> a spec, proven by a round trip before writing.
+
+read (the audit's readers, the Xacro sandbox) -> model -> spec data (:mod:`.spec`) -> YAML;
+then the spec is loaded with the spec loader, rendered with the templates and the URDF
+re-read: it must be the same robot (:mod:`.roundtrip`). Nothing is written unless it is.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+from lxml import etree
+
+from .. import model as m
+from ..audit.inputs import Options, kind_of
+from ..findings import Finding, InputError, Where
+from ..readers.srdf import read_srdf_text
+from ..readers.urdf import element_sources, parse_xml, read_urdf_text
+from ..readers.xacro_file import expand_located
+from ..safeio import check_file, read_bounded
+from ..xmlcompare import line_of
+from . import passthrough
+from .packages import package_paths
+from .poses import known_poses
+from .quantity import Units
+from .spec import SpecWriter, number, source_name
+from .structure import Structure, recognise
+
+
+@dataclass(frozen=True)
+class ImportOptions:
+    description: Options = field(default_factory=Options)
+    units: Units = field(default_factory=Units)
+    spec_name: str = "robot.yaml"  # the spec's file name, for messages about it
+
+
+@dataclass
+class Imported:
+    spec_text: str
+    robot: m.Robot  # the description as read (inline materials included), what the spec must give back
+    audit: list[Finding]  # the description's defects, as descgen audit reports them
+    report: list[Finding] = field(default_factory=list)  # what went to pass-through, what was not kept
+    differences: list[Finding] = field(default_factory=list)  # the round trip; empty: proven
+    kept: list[passthrough.Kept] = field(default_factory=list)
+    structured: bool = False  # parts: or sensors: written
+    spec_name: str = "robot.yaml"
+
+
+def _finding(code: str, severity: str, message: str, hint: str, subject: str, where: Where) -> Finding:
+    return Finding(code, severity, message, hint, subject, where)  # type: ignore[arg-type]
+
+
+def read(path: Path, options: Options) -> tuple[bytes, str, tuple[Where | None, ...] | None]:
+    """The URDF document of ``path`` (a Xacro is expanded in the sandbox), its display name and,
+    for a Xacro, where each element of the expanded document was written."""
+    shown = str(path)
+    check_file(path, "description", display=shown)
+    kind = kind_of(path)
+    if kind == "spec":
+        raise InputError(
+            [
+                _finding(
+                    "IMP002",
+                    "error",
+                    "this is already a descgen spec",
+                    "import reads a URDF or a Xacro; a spec needs no import",
+                    "file",
+                    Where(shown),
+                )
+            ]
+        )
+    if kind == "xacro":
+        ex = expand_located(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+        return ex.xml, f"{shown} (expanded)", ex.sources
+    return read_bounded(path, "URDF", display=shown), shown, None
+
+
+def _inline_materials(root: etree._Element, robot: m.Robot, file: str) -> tuple[m.Material, ...]:
+    """Materials defined inside a visual (``<material name><color/></material>``): the spec
+    declares materials once, so they become top-level materials (URDF readers treat both alike)."""
+    known = {mt.name for mt in robot.materials}
+    out: list[m.Material] = []
+    for me in root.iterfind("link/visual/material"):
+        name = me.get("name", "")
+        color = me.find("color")
+        texture = me.find("texture")
+        if not name or name in known or (color is None and texture is None):
+            continue
+        try:
+            rgba = tuple(float(t) for t in (color.get("rgba", "") if color is not None else "").split())
+        except ValueError:
+            continue
+        known.add(name)
+        out.append(
+            m.Material(
+                name,
+                (rgba[0], rgba[1], rgba[2], rgba[3]) if len(rgba) == 4 else None,
+                texture.get("filename") if texture is not None else None,
+                Where(file, line_of(me)),
+            )
+        )
+    return robot.materials + tuple(out)
+
+
+def _no_empty_materials(robot: m.Robot) -> tuple[m.Link, ...]:
+    """``<material name=""/>`` names no material (URDF readers treat it as none)."""
+    return tuple(
+        dataclasses.replace(lk, visuals=tuple(dataclasses.replace(v, material=v.material or None) for v in lk.visuals))
+        for lk in robot.links
+    )
+
+
+def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
+    """Group-state values of multi-DOF joints are not numbers the spec holds (nor checks):
+    each one left out is reported (IMP011), with the value as the SRDF writes it."""
+    sem = robot.semantic
+    assert sem is not None
+    dropped = [(s, n) for s in sem.states for n, v in s.values if not math.isfinite(v)]
+    report = []
+    if dropped:
+        root = parse_xml(read_bounded(srdf, "SRDF"), str(srdf))
+        for s, n in dropped:
+            je = root.find(f"group_state[@name={_quoted(s.name)}]/joint[@name={_quoted(n)}]")
+            raw = je.get("value", "") if je is not None else ""
+            where = Where(str(srdf), line_of(je)) if je is not None else s.where
+            report.append(
+                _finding(
+                    "IMP011",
+                    "warning",
+                    f"group state '{s.name}' joint '{n}' value '{raw}' is not kept: the spec holds one number per "
+                    "joint (a multi-DOF or unreadable value)"
+                    + ("" if _finite(s) else "; the state has no other value, so it is left out"),
+                    "the generated SRDF lacks this value; add it to the state by hand if MoveIt needs it",
+                    f"group_state:{s.name}",
+                    where,
+                )
+            )
+    lost = {id(s) for s, _ in dropped}
+    states = tuple(
+        dataclasses.replace(s, values=tuple((n, v) for n, v in s.values if math.isfinite(v)))
+        for s in sem.states
+        if id(s) not in lost or _finite(s)  # a state left with no value cannot be in the spec (SPEC004)
+    )
+    return dataclasses.replace(robot, semantic=dataclasses.replace(sem, states=states)), report
+
+
+def _finite(state: m.GroupState) -> bool:
+    return any(math.isfinite(v) for _, v in state.values)
+
+
+def _quoted(text: str) -> str:
+    """An XPath string literal for ``text`` (which may hold either quote)."""
+    if "'" not in text:
+        return f"'{text}'"
+    if '"' not in text:
+        return f'"{text}"'
+    return "concat(" + ', "\'", '.join(f"'{p}'" for p in text.split("'")) + ")"
+
+
+def _semantic(srdf: Path, robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+    semantic, name, found = read_srdf_text(read_bounded(srdf, "SRDF"), str(srdf))
+    return dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name)), found
+
+
+def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Imported:
+    """Read ``path`` and write its spec text; the round trip is :func:`prove`. With
+    ``structured``, cameras and repeated parts are written as ``sensors:`` and ``parts:``."""
+    from ..audit.inputs import audit
+
+    data, shown, sources = read(path, opts.description)
+    root = parse_xml(data, shown)
+    located = element_sources(root, sources) if sources is not None else {}
+    robot, _ = read_urdf_text(data, shown, sources)
+    robot = dataclasses.replace(
+        robot, materials=_inline_materials(root, robot, shown), links=_no_empty_materials(robot)
+    )
+    report: list[Finding] = []
+    if opts.description.srdf is not None:
+        robot, _ = _semantic(opts.description.srdf, robot)
+        robot, report = _finite_states(robot, opts.description.srdf)
+    kept, refused = passthrough.collect(root, located.get)
+    robot = dataclasses.replace(robot, passthrough=tuple(k.xml for k in kept), ros2_control=None)
+    report += [
+        _finding(
+            "IMP003",
+            "info",
+            f"<{k.tag}> is kept verbatim in passthrough: (the spec has no field for it)",
+            "review it in the spec; generate writes it back unchanged",
+            f"passthrough:{k.tag}",
+            k.where or Where(shown, k.line),
+        )
+        for k in kept
+    ]
+    report += [
+        _finding(
+            "IMP004",
+            "warning",
+            f"<{k.tag}> is not kept: {passthrough.problem(k.xml)}",
+            "it is left out of the spec; add what it means by hand if the robot needs it",
+            f"passthrough:{k.tag}",
+            k.where or Where(shown, k.line),
+        )
+        for k in refused
+    ]
+    report += _not_imported(root, opts.description, shown, located)
+    writer = SpecWriter(opts.units, source_name)
+    structure = recognise(robot, writer) if structured else Structure()
+    data_ = spec_data(robot, writer, kept, shown, structure)
+    folders, more = package_paths(robot, path, Path(opts.spec_name), opts.description.package_paths)
+    report += more
+    if folders:
+        data_ = _with_package_paths(data_, folders)
+    text = dump(data_, shown, opts.units)
+    structured = bool(structure.parts or structure.sensors)
+    return Imported(
+        text, robot, audit(path, opts.description), report, kept=kept, structured=structured, spec_name=opts.spec_name
+    )
+
+
+def _with_package_paths(data: dict[str, Any], folders: list[str]) -> dict[str, Any]:
+    """``package_paths:`` right after the robot's name and sources flag, where a reader looks."""
+    head = {k: data[k] for k in ("name", "require_sources")}
+    return head | {"package_paths": folders} | {k: v for k, v in data.items() if k not in head}
+
+
+def _not_imported(
+    root: etree._Element, options: Options, shown: str, located: dict[etree._Element, Where]
+) -> list[Finding]:
+    """Elements inside links and joints that no reader keeps: said, never silently lost."""
+    known = {
+        "link": {"visual", "collision", "inertial"},
+        "joint": {
+            "origin",
+            "parent",
+            "child",
+            "axis",
+            "limit",
+            "dynamics",
+            "mimic",
+            "safety_controller",
+            "calibration",
+        },
+    }
+    out = []
+    for tag, allowed in known.items():
+        for e in root.iterfind(tag):
+            for c in e:
+                if isinstance(c.tag, str) and c.tag not in allowed:
+                    out.append(
+                        _finding(
+                            "IMP004",
+                            "warning",
+                            f"<{c.tag}> inside {tag} '{e.get('name', '')}' is not kept (the spec has no field for it)",
+                            "add what it means by hand if the robot needs it",
+                            f"{tag}:{e.get('name', '')}",
+                            located.get(c) or Where(shown, line_of(c)),
+                        )
+                    )
+    if options.controllers is not None:
+        out.append(
+            _finding(
+                "IMP005",
+                "warning",
+                "the controllers YAML is not imported: <ros2_control> stays in passthrough:, so the "
+                "controllers stay in their own file",
+                "keep using your ros2_controllers.yaml beside the generated package",
+                "controllers",
+                Where(str(options.controllers)),
+            )
+        )
+    return out
+
+
+def spec_data(
+    robot: m.Robot, w: SpecWriter, kept: list[passthrough.Kept], shown: str, structure: Structure | None = None
+) -> dict[str, Any]:
+    st = structure or Structure()
+    materials = [w.material(mt) for mt in robot.materials]
+    links = [w.link(lk) for lk in robot.links if lk.name not in st.links]
+    joints = [w.joint(j) for j in robot.joints if j.name not in st.joints]
+    poses = known_poses(robot, w, source_name(robot.where if robot.where.file else Where(shown)))
+    out: dict[str, Any] = {"name": robot.name, "require_sources": True}
+    plaus = w.plausibility()
+    if plaus:
+        out["plausibility"] = plaus
+    if materials:
+        out["materials"] = materials
+    out["links"] = links
+    if joints:
+        out["joints"] = joints
+    if st.parts:
+        out["parts"] = st.parts
+    if st.sensors:
+        out["sensors"] = st.sensors
+    if robot.semantic is not None:
+        from .semantic import semantic_data
+
+        out["semantic"] = semantic_data(robot, w)
+    if poses:
+        out["known_poses"] = poses
+    if kept:
+        out["passthrough"] = [{"xml": k.xml, "source": source_name(k.where or Where(shown, k.line))} for k in kept]
+    return out
+
+
+class _Dumper(yaml.SafeDumper):
+    pass
+
+
+def _str(dumper: yaml.SafeDumper, data: str) -> yaml.Node:
+    style = "|" if "\n" in data else None
+    return dumper.represent_scalar("tag:yaml.org,2002:str", data, style=style)
+
+
+def _float(dumper: yaml.SafeDumper, data: float) -> yaml.Node:
+    # repr is the shortest text that reads back as the same float (YAML 1.1 needs a dot
+    # or an exponent with a sign; the spec reads 1e-05 as the number it means)
+    return dumper.represent_scalar("tag:yaml.org,2002:float", repr(data))
+
+
+_Dumper.add_representer(str, _str)
+_Dumper.add_representer(float, _float)
+
+
+def dump(data: dict[str, Any], shown: str, chosen: Units) -> str:
+    head = (
+        f"# Imported from {Path(shown.removesuffix(' (expanded)')).name} by descgen import.\n"
+        f"# Units: lengths in {chosen.length}, angles in {chosen.angle}, masses in {chosen.mass}, the rest in SI;\n"
+        "# every value is exactly the description's (model values, not measurements) and cites\n"
+        "# the file:line it came from. Review, then replace sources with your measurements.\n\n"
+    )
+    body = yaml.dump(data, Dumper=_Dumper, sort_keys=False, default_flow_style=None, width=110, allow_unicode=True)
+    return head + body
+
+
+__all__ = ["ImportOptions", "Imported", "describe", "number"]
+
+
+@dataclass
+class Outcome:
+    imported: Imported
+    invalid: list[Finding]  # why the spec fails validate (the description's defects); round trip not run
+
+    @property
+    def proven(self) -> bool:
+        return not self.invalid and not self.imported.differences
+
+
+def import_description(path: Path, opts: ImportOptions) -> Outcome:
+    """Read, write the spec text, prove it by the round trip. InputError: unusable input.
+
+    Parts and cameras are written only in a spec that is proven: when it is not, the flat
+    spec is written instead, so the round trip proves it or validate fails at the very
+    elements of the description (a part would fold its instances' defects into one)."""
+    outcome = _proved(describe(opts, path))
+    if outcome.proven or not outcome.imported.structured:
+        return outcome
+    flat = _proved(describe(opts, path, structured=False))
+    if not outcome.invalid:
+        flat.imported.report.append(_unstructured(len(outcome.imported.differences), Where(opts.spec_name)))
+    return flat
+
+
+def _proved(imported: Imported) -> Outcome:
+    from .roundtrip import prove
+
+    try:
+        imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name)
+    except InputError as exc:
+        invalid = [
+            dataclasses.replace(
+                f,
+                severity="warning",
+                message=f"the imported spec fails validate here (a defect of the description): {f.message}",
+            )
+            for f in exc.findings
+        ]
+        return Outcome(imported, invalid)
+    return Outcome(imported, [])
+
+
+def _unstructured(n: int, where: Where) -> Finding:
+    return _finding(
+        "IMP013",
+        "info",
+        f"repeated parts and cameras are written as plain links and joints: as parts:/sensors: the round trip "
+        f"differed at {n} place(s)",
+        "nothing is lost; group them by hand if you want, and let validate and check prove it",
+        "import",
+        where,
+    )
+
+
+def write_spec(path: Path, text: str) -> None:
+    """Write the spec whole or not at all: a temporary file beside it, then a rename."""
+    import os
+    import tempfile
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,67 @@
+"""The ``<ros2_control>`` blocks of a robot as the templates write them: per block its
+hardware (every variant in the Xacro), joints with their interface params, sensors and gpios."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .. import derive
+from ..model import HardwareBlock, Robot, Ros2Control
+from .formatting import xacro_text
+
+
+def in_block(rc: Ros2Control, block: HardwareBlock, owner: str) -> bool:
+    """Whether a joint/sensor/gpio whose block is ``owner`` belongs to ``block``. With one
+    block everything does (a model built by hand may leave ``block`` empty)."""
+    return len(rc.hardware_blocks()) == 1 or owner == block.name
+
+
+def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
+    """One entry per block, in document order; free text escaped for the template family."""
+    rc = robot.ros2_control
+    if rc is None:
+        return []
+    text = xacro_text if xacro else str
+
+    def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
+        return [(k, text(v)) for k, v in items]
+
+    block_of = {cj.name: cj.block for cj in rc.joints}
+    joints = derive.interfaces_with_limits(robot)
+    out = []
+    for b in rc.hardware_blocks():
+        out.append(
+            {
+                "name": b.name,
+                "type": b.type,
+                "plugin": b.plugin,
+                "params": params(b.params),
+                # the Xacro chooses the hardware with hardware:=; a URDF is the default variant
+                "variants": [{"name": v.name, "plugin": v.plugin, "params": params(v.params)} for v in b.variants]
+                if xacro
+                else [],
+                "joints": [jt for jt in joints if in_block(rc, b, block_of.get(jt[0], ""))],
+                "sensors": [
+                    {"name": c.name, "state": c.state, "params": params(c.params)}
+                    for c in rc.sensors
+                    if in_block(rc, b, c.block)
+                ],
+                "gpios": [g for g in rc.gpios if in_block(rc, b, g.block)],
+            }
+        )
+    return out
+
+
+def control_depends(rc: Ros2Control) -> list[str]:
+    """exec_depends for the hardware plugins of every block and variant: mock_components lives
+    in hardware_interface; a gazebo variant needs gz_ros2_control (its GazeboSimSystem and the
+    gz_ros2_control-system sim plugin), as ros2_control_demos example_9's package.xml declares.
+    A vendor's plugin is not a dependency: the driver depends on the description, not the
+    reverse (ur_description does not depend on ur_robot_driver)."""
+    plugins = [p for b in rc.hardware_blocks() for p in (b.plugin, *(v.plugin for v in b.variants))]
+    out = []
+    if any(p.startswith("mock_components/") for p in plugins):
+        out.append("hardware_interface")
+    if any(p.startswith("gz_ros2_control/") for p in plugins):
+        out.append("gz_ros2_control")
+    return out

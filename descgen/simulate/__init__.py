@@ -1,0 +1,197 @@
+"""``descgen simulate``: MuJoCo as a consumer of the description.
+
+MuJoCo compiles the robot from its URDF (``mujoco_urdf``), which shows what it refuses and
+what it changes silently (``compile``); then a short gravity run holds the joints at a pose
+with PD servos, on a fixed base or free on a floor (``gravity``). ``faults`` plants the
+mistakes the run must catch.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..findings import Finding, InputError, Where
+from ..mimic import resolve
+from ..model import MULTI_DOF, WITH_LIMITS, Robot
+from . import gravity
+from .codes import finding
+from .compile import compile_robot, silent_changes
+from .mujoco_urdf import emit
+
+BASES = ("fixed", "floor")
+MIN_SECONDS, MAX_SECONDS = 0.01, 10.0
+DEFAULT_SECONDS = 2.0
+
+
+@dataclass(frozen=True)
+class Settings:
+    seconds: float = DEFAULT_SECONDS
+    pose: str | None = None  # None: every joint at zero (clamped into its limits)
+    base: str | None = None  # None: floor for a mobile robot, else fixed (see default_base)
+    gear: float = 1.0  # planted faults only
+    damping: float | None = None  # planted faults only: the servos' kv instead of the default
+
+
+@dataclass
+class Outcome:
+    findings: list[Finding]
+    report: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def failed(self) -> bool:
+        return any(f.severity == "error" for f in self.findings)
+
+
+def require_mujoco() -> None:
+    try:
+        import mujoco  # noqa: F401
+    except ImportError:
+        raise InputError(
+            [
+                finding(
+                    "SIM009",
+                    "descgen simulate needs the mujoco package, which is not installed",
+                    "pip install 'descgen[sim]' (or pip install 'mujoco>=3')",
+                )
+            ]
+        ) from None
+
+
+def default_base(robot: Robot) -> str:
+    """floor for a mobile robot (an SRDF virtual joint that is planar or floating, or a root
+    link named base_footprint), else fixed. A root named world is fixed by definition."""
+    root = robot.root()
+    if root is None or root == "world":
+        return "fixed"
+    virtual = robot.semantic.virtual_joints if robot.semantic else ()
+    if any(v.type in MULTI_DOF and v.child_link == root for v in virtual) or root == "base_footprint":
+        return "floor"
+    return "fixed"
+
+
+def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
+    """Joint values of the named pose (a known pose, else an SRDF group state), mimic joints
+    set from their leaders; without a name every joint at zero, clamped into its limits."""
+    if name is None:
+        values = {j.name: _clamped_zero(j) for j in robot.joints if j.type in WITH_LIMITS}
+    elif (kp := next((p for p in robot.known_poses if p.name == name), None)) is not None:
+        values = dict(kp.joints)
+    elif robot.semantic and (st := next((s for s in robot.semantic.states if s.name == name), None)) is not None:
+        values = dict(st.values)
+    else:
+        names = [p.name for p in robot.known_poses] + [
+            s.name for s in (robot.semantic.states if robot.semantic else ())
+        ]
+        there = ", ".join(dict.fromkeys(names)) or "none (the description has no known poses or SRDF states)"
+        raise InputError(
+            [
+                finding(
+                    "SIM014",
+                    f"--pose {name!a} is no known pose or SRDF group state",
+                    f"poses: {there}",
+                    where=Where("<command line>"),
+                )
+            ]
+        )
+    return resolve(robot, values)
+
+
+def _clamped_zero(j: Any) -> float:
+    lm = j.limit
+    if lm is None or lm.lower is None or lm.upper is None or lm.lower > lm.upper:
+        return 0.0
+    return float(min(max(0.0, lm.lower), lm.upper))
+
+
+def simulate(robot: Robot, settings: Settings, description: Path | None, package_paths: Sequence[Path] = ()) -> Outcome:
+    """Compile ``robot`` with MuJoCo, report its refusals and silent changes, run gravity."""
+    require_mujoco()
+    import mujoco
+
+    started = time.perf_counter()
+    base = settings.base or default_base(robot)
+    root = robot.root()
+    if base == "floor" and (root is None or root == "world"):
+        base = "fixed"  # no single root to set free; reported in the report's "base"
+    pose = pose_values(robot, settings.pose)
+    setup = gravity.Setup(base, settings.seconds, tuple(pose.items()), settings.gear, settings.damping)
+    held = gravity.servos(robot, setup)
+    free = base == "floor"
+
+    def customise(spec: Any) -> None:
+        gravity.set_integrator(spec)
+        gravity.add_servos(spec, held, setup.gear)
+        if free:
+            assert root is not None
+            gravity.add_floor(spec, root)
+
+    compiled = compile_robot(robot, lambda r: emit(r, description, package_paths), customise)
+    report: dict[str, Any] = {"base": base, "pose": settings.pose or "zero", "seconds": settings.seconds}
+    if compiled.spec is None:
+        return Outcome(compiled.findings, report | {"compiled": False})
+    found = [*compiled.findings, *silent_changes(robot, compiled.model)]
+    model = compiled.model
+    data = mujoco.MjData(model)
+    gravity.place(model, data, pose, free)
+    excluded = gravity.touching(model, data)
+    if excluded:  # shapes touching at rest would push the pose away: leave those contacts out
+        for a, b in excluded:
+            compiled.spec.add_exclude(bodyname1=a, bodyname2=b)
+        model = compiled.spec.compile()
+        data = mujoco.MjData(model)
+        gravity.place(model, data, pose, free)
+        found.append(_excluded(robot, excluded))
+    held = gravity.damped(model, data, held)
+    if not held and not free:
+        found.append(
+            finding(
+                "SIM016",
+                "nothing moves: no one-DOF joint to hold and a fixed base",
+                "use --base floor for a mobile robot",
+                f"robot:{robot.name}",
+                robot.where,
+            )
+        )
+    trace = gravity.step(model, data, held, settings.seconds, free)
+    found += gravity.verdict(robot, held, trace, settings.seconds)
+    report |= {
+        "compiled": True,
+        "bodies": int(model.nbody),
+        "servos": [dataclasses.asdict(s) | {"tolerance": s.tolerance} for s in held],
+        "drift": trace.drift,
+        "end_speed": trace.end_speed,
+        "tilt_deg": trace.tilt_deg,
+        "warnings": trace.warnings,
+        "steps": trace.steps,
+        "excluded_contacts": [list(p) for p in excluded],
+        "wall_s": time.perf_counter() - started,
+    }
+    return Outcome(found, report)
+
+
+def _excluded(robot: Robot, pairs: list[tuple[str, str]]) -> Finding:
+    said = ", ".join(f"{a}/{b}" for a, b in pairs)
+    return finding(
+        "SIM015",
+        f"{len(pairs)} pair(s) of bodies touch at the pose and are excluded from contact: {said}",
+        "a MuJoCo consumer needs the same <contact><exclude> pairs (or smaller collision shapes)",
+        f"robot:{robot.name}",
+        robot.where,
+    )
+
+
+def simulate_description(path: Path, options: Any, settings: Settings) -> Outcome:
+    """``descgen simulate``: read a spec, URDF or Xacro (``options``: audit.inputs.Options) and
+    simulate it; what its readers reported comes first."""
+    from ..audit.inputs import load_description
+
+    require_mujoco()  # before reading: a missing optional package is the first thing to say
+    robot, read = load_description(path, options)
+    outcome = simulate(robot, settings, path, tuple(options.package_paths))
+    outcome.findings[:0] = read
+    return outcome
