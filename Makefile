@@ -17,11 +17,12 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 demo: setup
-	$(PY) -m pip install --quiet -e '.[sim]'
+	$(PY) -m pip install --quiet -e '.[sim,view]'
 	$(BIN)/descgen validate $(SPEC)
 	$(BIN)/descgen generate $(SPEC)
 	$(BIN)/descgen check $(SPEC)
 	$(BIN)/descgen simulate $(SPEC) --pose ready
+	$(BIN)/descgen report $(SPEC)
 
 lint: setup
 	$(BIN)/ruff check descgen tests benchmarks

@@ -93,6 +93,40 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return worst
 
 
+def _cmd_report(args: argparse.Namespace) -> int:
+    from .generate import check
+
+    outcome = check(Path(args.spec), args.out, write_page=True)
+    sys.stderr.write(report.text(outcome.findings))
+    if outcome.failed:
+        print(f"{args.spec}: evidence page not written", file=sys.stderr)
+        return EXIT_FAILED
+    for rel in outcome.written:
+        print(f"wrote {rel}")
+    return EXIT_OK
+
+
+def _cmd_view(args: argparse.Namespace) -> int:
+    import threading
+
+    from .view import load, require_viser
+    from .view.server import start
+
+    robot, urdf = load(Path(args.path), tuple(args.package_path or ()))  # bad input first: exit 2 at the file
+    require_viser()
+    viewer = start(robot, urdf, args.host, args.port, Path(args.path).resolve().parent)
+    try:  # from here on Ctrl-C stops the server and exits 0
+        if args.host not in ("127.0.0.1", "::1"):
+            print(f"warning: bound to {args.host}: anyone who can reach it can see the robot", file=sys.stderr)
+        print(f"descgen view: {robot.name} at {viewer.url} (Ctrl-C to stop)", flush=True)
+        threading.Event().wait()  # viser serves from its own thread
+    except KeyboardInterrupt:
+        print("descgen view: stopped", file=sys.stderr)
+    finally:
+        viewer.close()
+    return EXIT_OK
+
+
 def _cmd_poses(args: argparse.Namespace) -> int:
     from .poses import evaluate, findings
     from .spec import load_spec
@@ -203,14 +237,16 @@ def _cmd_frames(args: argparse.Namespace) -> int:
 
 
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
-    from .tf.bagaudit import audit
+    from .tf.bagaudit import audit_all
 
-    rep = audit(Path(args.bag), args.target, tuple(args.topic or ()), args.wait, args.max_age)
+    bags = [Path(b) for b in args.bag]
+    topics = tuple(args.topic or ())
+    reps = audit_all(bags, args.target, args.jobs, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
     if args.format == "json":
-        sys.stdout.write(json.dumps(rep.as_dict(), indent=2) + "\n")
+        sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, reps), indent=2) + "\n")
     else:
-        sys.stdout.write(cli_format.tf_audit_text(rep, args.target))
-    return EXIT_FAILED if rep.lookups - rep.counts["ok"] else EXIT_OK
+        sys.stdout.write(cli_format.tf_audit_texts(args.bag, reps, args.target))
+    return EXIT_FAILED if any(rep.lookups - rep.counts["ok"] for rep in reps) else EXIT_OK
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:
@@ -224,7 +260,7 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
 
 
 def _cmd_control(args: argparse.Namespace) -> int:
-    from .control.evidence import write_evidence
+    from .control.evidence import evidence_folder, write_evidence
     from .control.load import find_package
     from .control.run import run
     from .control.system import Plant, plant_faults
@@ -236,7 +272,7 @@ def _cmd_control(args: argparse.Namespace) -> int:
     faults = plant_faults(args.plant_fault or [], args.plant, robot)
     trajectory = read_trajectory(args.trajectory, robot)
     out = run(package, robot, trajectory, args.duration, Plant(args.plant, faults=faults, noise=0.0))
-    folder = args.out or package / "evidence"
+    folder = args.out or evidence_folder(package, args.plant, faults)
     written = write_evidence(out, folder, robot)
     verdict = out.verdict()
     sys.stdout.write(cli_format.control_text(written, folder, verdict))
@@ -411,7 +447,10 @@ def parser() -> argparse.ArgumentParser:
     fr.set_defaults(fn=_cmd_frames)
 
     ta = sub.add_parser("tf-audit", help="look up every sensor message of a rosbag2 recording at its stamp")
-    ta.add_argument("bag", help="rosbag2 folder (MCAP or sqlite3)")
+    ta.add_argument("bag", nargs="+", help="rosbag2 folder (MCAP or sqlite3); several are audited one by one")
+    ta.add_argument(
+        "--jobs", type=types.jobs, default=1, help="audit this many recordings at once, in separate processes"
+    )
     ta.add_argument("--target", required=True, help="frame to look every message up in (e.g. odom)")
     ta.add_argument("--topic", action="append", help="sensor topic (repeatable; default: every topic with a header)")
     ta.add_argument(
@@ -463,7 +502,12 @@ def parser() -> argparse.ArgumentParser:
         help="the generated package, or the output root that `generate --out` wrote it under "
         "(default: generated/ beside specs/)",
     )
-    co.add_argument("--out", type=types.path, help="folder for the evidence (default: the package's evidence/)")
+    co.add_argument(
+        "--out",
+        type=types.path,
+        help="folder for the evidence (default: the package's evidence/ for a mock run; "
+        "a new scratch folder for an experiment with --plant sim or --plant-fault)",
+    )
     co.set_defaults(fn=_cmd_control)
 
     si = sub.add_parser("simulate", help="compile the robot with MuJoCo and hold it at a pose under gravity")
@@ -484,6 +528,20 @@ def parser() -> argparse.ArgumentParser:
     description_options(si)
     si.add_argument("--format", choices=("text", "json"), default="text")
     si.set_defaults(fn=_cmd_simulate)
+
+    rp = sub.add_parser("report", help="write evidence/README.md: every proof of the package on one page")
+    rp.add_argument("spec")
+    rp.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    rp.set_defaults(fn=_cmd_report)
+
+    vw = sub.add_parser("view", help="the robot in the browser: joint sliders, known poses and their measurements")
+    vw.add_argument("path", help="spec, URDF or Xacro")
+    vw.add_argument("--port", type=types.port, default=8080, help="TCP port (default 8080; 0: any free port)")
+    vw.add_argument(
+        "--host", type=types.host, default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)"
+    )
+    vw.add_argument("--package-path", action="append", type=types.folder, help="folder holding packages (repeatable)")
+    vw.set_defaults(fn=_cmd_view)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")

@@ -162,6 +162,20 @@ def tf_audit_text(rep: Report, target: str) -> str:
     return "".join(line + "\n" for line in lines)
 
 
+def tf_audit_texts(bags: Sequence[str], reps: Sequence[Report], target: str) -> str:
+    """One recording's report as before; several, each under its name."""
+    if len(reps) == 1:
+        return tf_audit_text(reps[0], target)
+    return "".join(f"== {printable(bag)}\n" + tf_audit_text(rep, target) for bag, rep in zip(bags, reps, strict=True))
+
+
+def tf_audit_json(bags: Sequence[str], reps: Sequence[Report]) -> dict[str, Any]:
+    """One recording's report as before; several as {"recordings": {folder: report}}."""
+    if len(reps) == 1:
+        return reps[0].as_dict()
+    return {"recordings": {bag: rep.as_dict() for bag, rep in zip(bags, reps, strict=True)}}
+
+
 def control_text(written: Sequence[str], folder: object, verdict: dict[str, Any]) -> str:
     lines = [f"wrote {', '.join(written)} to {folder}"]
     for joint, err in verdict["tracking"].items():

@@ -135,3 +135,41 @@ def import_units(text: str) -> object:
         return Units.parse(text)
     except ValueError as exc:
         raise OptionError("IMP008", f"--units: {exc}", "write e.g. --units mm,deg,kg or --units si") from None
+
+
+MAX_JOBS = 64  # descgen.tf.bagaudit.MAX_JOBS, not imported: parsing must not import rosbags' users
+
+
+def jobs(text: str) -> int:
+    """How many processes a command may run at once: a whole number from 1 to MAX_JOBS."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not a whole number of processes") from None
+    if not 1 <= n <= MAX_JOBS:
+        raise argparse.ArgumentTypeError(f"{n} processes is outside 1 to {MAX_JOBS}")
+    return n
+
+
+def port(text: str) -> int:
+    """A TCP port for ``descgen view``: 0 (any free port) or 1 to 65535."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not a port number") from None
+    if not 0 <= n <= 65535:
+        raise argparse.ArgumentTypeError(f"{n} is outside 0 (any free port) to 65535")
+    return n
+
+
+def host(text: str) -> str:
+    """An address to bind ``descgen view`` to: an IP address or ``localhost`` (never a name that
+    needs a lookup: what is exposed must be clear from the command line)."""
+    import ipaddress
+
+    if text == "localhost":
+        return "127.0.0.1"
+    try:
+        return str(ipaddress.ip_address(text))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not an IP address (e.g. 127.0.0.1)") from None

@@ -162,6 +162,25 @@ register(
       opened (docs/security.md). Name a regular file.""",
     ),
     C(
+        "SPEC100",
+        "collision-matrix-unknown-state",
+        "error",
+        "spec",
+        "semantic.collision_matrix.default_state names no group state of the spec.",
+        """The Default reason disables pairs in collision at that state; a misspelt name would fall back
+      to another pose and disable the wrong pairs. Name one of semantic.group_states.""",
+    ),
+    C(
+        "SPEC101",
+        "collision-matrix-padding-range",
+        "error",
+        "spec",
+        "semantic.collision_matrix.padding is negative or larger than 100 mm.",
+        """Padding inflates every collision shape while sampling: a large value makes near pairs look
+      Always or Default and disables checks MoveIt needs; a negative one shrinks shapes and marks
+      touching pairs Never. Use 0 to a few millimetres.""",
+    ),
+    C(
         "SPEC001",
         "unknown-key",
         "error",
@@ -829,6 +848,45 @@ register(
         """Meshes are copied byte for byte, and binary files carry no header, so check compares each copy
       with its source (and the package's meshes/meshes.sha256 records what was copied). Run descgen
       generate and commit the result; change a mesh at its source, not in the package.""",
+    ),
+    C(
+        "GEN070",
+        "collision-matrix-unavailable",
+        "error",
+        "generate",
+        "The spec asks for a sampled collision matrix (semantic.collision_matrix) but it cannot be computed: "
+        "pinocchio (descgen[collision]) is missing or cannot load the collision geometry.",
+        """Writing the SRDF without the matrix the spec asks for would silently leave MoveIt checking
+      (or skipping) pairs nobody measured. Install the extra (pip install 'descgen[collision]'),
+      fix the geometry pinocchio names, or remove semantic.collision_matrix.""",
+    ),
+    C(
+        "GEN080",
+        "evidence-page-stale",
+        "error",
+        "generate",
+        "The evidence page (evidence/README.md, written by descgen report) no longer matches the proofs it summarises.",
+        """A reviewer reads the page instead of re-running every proof, so a page that shows yesterday's
+      verdicts is worse than none. check rebuilds it in memory (MuJoCo's machine-dependent lines aside)
+      and compares. Run descgen report SPEC and commit the result.""",
+    ),
+    C(
+        "GEN081",
+        "evidence-page-refused",
+        "error",
+        "generate",
+        "descgen report did not write the evidence page: the package is stale, a check failed or a verdict failed.",
+        """The page is evidence for a reviewer; written over a failing package it would present a failure
+      as a proof. Fix what descgen check reports (or the failed verdict quoted), then run report again.""",
+    ),
+    C(
+        "VIEW001",
+        "viewer-not-installed",
+        "error",
+        "command",
+        "descgen view needs the optional viewer (viser with URDF support), which is not installed.",
+        """The viewer is an optional extra so that descgen's proofs need no web stack. Install it with
+      pip install 'descgen[view]'; its wheel ships the web client, so it works offline.""",
     ),
     C(
         "GEN061",

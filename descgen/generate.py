@@ -100,11 +100,42 @@ def plan(spec: Path, out_root: Path | None = None, templates: Path | None = None
     shown = spec_display(spec, root)
     files = render_package(robot, shown, templates, sandboxed)
     meshes = _mesh_copies(robot, root)
+    if robot.semantic is not None and robot.semantic.collision_matrix is not None:
+        # the matrix needs the expanded URDF; the SRDF and its evidence are rendered again with it
+        robot = _with_matrix(robot, files, meshes, root / package_name(robot))
+        files = render_package(robot, shown, templates, sandboxed)
     if meshes:
         files[MANIFEST] = header.add(MANIFEST, _manifest(meshes), shown, robot.spec_hash or "0" * 64)
     package_dir = root / package_name(robot)
     found = [*loaded.findings, *checks.run_all(files, robot, package_dir)]
     return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes)
+
+
+def _with_matrix(robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple[Path, bytes]], pkg: Path) -> Robot:
+    """The robot with its sampled self-collision matrix, taken from the committed SRDF when
+    that records the same input hash (so ``check`` does not sample again)."""
+    from dataclasses import replace
+
+    from . import collision
+
+    sem = robot.semantic
+    assert sem is not None and sem.collision_matrix is not None
+    srdf = pkg / "srdf" / f"{robot.name}.srdf"
+    committed = None
+    if srdf.is_file() and not srdf.is_symlink():
+        try:
+            committed = read_bounded(srdf, "SRDF").decode("utf-8", errors="replace")
+        except InputError:
+            committed = None  # unreadable: sample again, check reports the file
+    matrix = collision.compute(
+        robot,
+        files[f"urdf/{robot.name}.urdf"],
+        {rel: data for rel, (_, data) in meshes.items()},
+        pkg.name,
+        sem.collision_matrix,
+        committed,
+    )
+    return replace(robot, semantic=replace(sem, matrix=matrix))
 
 
 # --- the robot's own meshes: copied byte for byte, their hashes in a manifest -----------------------
@@ -584,8 +615,9 @@ def draw_frames(package_dir: Path) -> None:
     )
 
 
-def check(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Outcome:
-    """Regenerate in memory and compare with the files on disk; run every check."""
+def check(spec: Path, out_root: Path | None = None, templates: Path | None = None, write_page: bool = False) -> Outcome:
+    """Regenerate in memory and compare with the files on disk; run every check. The evidence
+    page (``descgen report``) is compared when it exists, and written with ``write_page``."""
     root = _output_root(spec, out_root)
     p = plan(spec, root, templates)
     refuse_unsafe(p.package_dir)  # a link would let the diff print a file from elsewhere
@@ -639,7 +671,38 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
             )
     outcome.diff = "".join(diffs)
     outcome.findings += _stale_evidence(spec, p, root or default_out(spec))
+    outcome.findings += _evidence_page(spec, p, root or default_out(spec), outcome, write_page)
     return outcome
+
+
+def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page: bool) -> list[Finding]:
+    """The evidence page rebuilt from the proofs just run: compared (GEN080), or written when
+    asked and every proof passed (else GEN081: a page must not show a failed package as current)."""
+    from . import evidence_page as page
+
+    if not write_page and not (p.package_dir / page.PAGE).is_file():
+        return []
+    shown = spec_display(spec, root)
+    lines = page.check_lines(shown, outcome.findings, outcome.diff)
+    fresh = page.build(spec, shown, p.files, p.robot, p.package_dir, lines, len(p.content()), simulate=write_page)
+    if not write_page:
+        return page.stale(p.package_dir, fresh)
+    bad = page.failed_verdicts(fresh)
+    if outcome.failed or bad:
+        why = bad[0] if bad else "the package is stale or a check failed"
+        return [
+            Finding(
+                "GEN081",
+                "error",
+                f"{page.PAGE} not written: {why}",
+                "fix what check reports, then run descgen report again",
+                f"file:{page.PAGE}",
+                Where(str(p.package_dir / page.PAGE)),
+            )
+        ]
+    outcome.written.append(page.PAGE)
+    page.write(p.package_dir, fresh)
+    return []
 
 
 def _stale_meshes(p: Plan) -> list[Finding]:

@@ -388,6 +388,30 @@ class DisabledPair:
 
 
 @dataclass(frozen=True)
+class MatrixSettings:
+    """How the self-collision matrix is sampled (``semantic.collision_matrix``)."""
+
+    default_state: str | None = None  # a group state's name; None: the first group state
+    seed: int = 0
+    samples: int = 10000
+    fraction: float = 0.95  # "Always": in collision in more than this fraction of samples
+    padding: float = 0.0  # metres added around every collision shape
+    where: Where = NOWHERE
+
+
+@dataclass(frozen=True)
+class CollisionMatrix:
+    """The computed matrix (descgen/collision.py): what generate writes into the SRDF."""
+
+    settings: MatrixSettings
+    input_hash: str  # sha256 of geometry, joints and settings: the cache key
+    pairs: tuple[DisabledPair, ...]  # Adjacent, Default, Always, Never; sorted
+    skipped: tuple[str, ...]  # links without collision geometry
+    checked: int  # link pairs with geometry on both sides
+    state: str  # the group state the Default test used ("" = all joints at zero)
+
+
+@dataclass(frozen=True)
 class Semantic:
     groups: tuple[Group, ...] = ()
     states: tuple[GroupState, ...] = ()
@@ -397,6 +421,8 @@ class Semantic:
     disabled_collisions: tuple[DisabledPair, ...] = ()
     where: Where = NOWHERE
     robot_name: str | None = None  # the SRDF's <robot name>; None for a spec's semantic (SRDF005)
+    collision_matrix: MatrixSettings | None = None  # sample a matrix (generate fills ``matrix``)
+    matrix: CollisionMatrix | None = None
 
 
 @dataclass(frozen=True)

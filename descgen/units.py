@@ -18,17 +18,84 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 import re
+import sys
 from dataclasses import dataclass
 from decimal import Decimal
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-import pint
-from pint.util import string_preprocessor
+if TYPE_CHECKING:
+    import pint
 
-ureg: pint.UnitRegistry[Any] = pint.UnitRegistry()
-"""The project's one registry. Never create another (quantities from two registries
-cannot be combined)."""
+# Environment variable naming the folder for pint's parsed-definition cache ("" = no cache).
+CACHE_ENV = "DESCGEN_CACHE_DIR"
+
+
+def _import_pint() -> Any:
+    """pint, imported without its optional scipy support.
+
+    pint probes ``import scipy`` at import, only for numpy-array functions descgen never
+    calls; that probe would put scipy into every cold start. Hidden only while pint is
+    first imported (a later ``import scipy`` anywhere works as usual)."""
+    if "pint" not in sys.modules and "scipy" not in sys.modules:
+        sys.modules["scipy"] = None  # type: ignore[assignment]  # makes "import scipy" raise ImportError
+        try:
+            import pint
+        finally:
+            del sys.modules["scipy"]
+    import pint
+
+    return pint
+
+
+@functools.cache
+def registry() -> pint.UnitRegistry[Any]:
+    """The project's one registry, built on first use. Never create another (quantities
+    from two registries cannot be combined).
+
+    Built lazily because ``--help``, ``rules`` and ``schema`` need no units, and from pint's
+    definition cache because parsing pint's definition file is ~0.15 s of every cold start."""
+    lib = _import_pint()
+    reg: pint.UnitRegistry[Any]
+    folder = _cache_folder()
+    if folder is not None:
+        try:
+            reg = lib.UnitRegistry(cache_folder=folder)
+            return reg
+        except Exception:  # a cache another process is writing, or unwritable: build it afresh
+            pass
+    reg = lib.UnitRegistry()
+    return reg
+
+
+def _cache_folder() -> Path | None:
+    """Where pint may cache its parsed definitions, per pint version; None when caching is off
+    or the folder cannot be made."""
+    version = _import_pint().__version__
+    configured = os.environ.get(CACHE_ENV)
+    if configured == "":
+        return None
+    if configured is None:
+        import platformdirs
+
+        base = platformdirs.user_cache_path("descgen", appauthor=False)
+    else:
+        base = Path(configured)
+    folder = base / f"pint-{version}"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder
+
+
+def __getattr__(name: str) -> Any:
+    # ``units.ureg`` still works, built on first access like ``registry()``
+    if name == "ureg":
+        return registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass(frozen=True)
@@ -64,7 +131,10 @@ KINDS: dict[str, Kind] = {
     )
 }
 
-_ENERGY = ureg.get_dimensionality("[energy]")
+
+@functools.cache
+def _energy() -> Any:
+    return registry().get_dimensionality("[energy]")
 
 
 class QuantityError(ValueError):
@@ -105,7 +175,7 @@ def _a(kind_name: str) -> str:
 
 
 def _radian_power(q: pint.Quantity[Any]) -> int:
-    _, root = ureg.get_root_units(q.units)
+    _, root = registry().get_root_units(q.units)
     return int(dict(root._units).get("radian", 0))  # type: ignore[arg-type]
 
 
@@ -127,7 +197,7 @@ def _too_complex(text: str) -> str | None:
     preprocessed form, where "^" and superscripts have already become "**"."""
     if len(text) > MAX_TEXT:
         return f"is {len(text)} characters long; quantity text is at most {MAX_TEXT}"
-    expr = string_preprocessor(text)
+    expr = _import_pint().util.string_preprocessor(text)
     for digits in re.findall(r"\d[\d_]*", expr):
         if len(digits) > MAX_DIGITS:
             return f"has a number with {len(digits)} digits; at most {MAX_DIGITS} are read"
@@ -177,12 +247,12 @@ def parse(text: str) -> pint.Quantity[Any]:
             "use a decimal point, and write vectors as a YAML list",
         )
     try:
-        q: Any = ureg.Quantity(stripped.replace("·", "*").replace("×", "*"))
+        q: Any = registry().Quantity(stripped.replace("·", "*").replace("×", "*"))
     except Exception:  # pint raises AssertionError, TokenError, ... on bad text
         raise QuantityError(
             "UNIT002", f'cannot read "{text}" as a quantity', 'write a number and a unit, e.g. "300 mm"'
         ) from None
-    if not isinstance(q, pint.Quantity):
+    if not isinstance(q, registry().Quantity):
         raise QuantityError("UNIT002", f'"{text}" is not a quantity', 'write a number and a unit, e.g. "300 mm"')
     mag = q.magnitude
     try:
@@ -234,6 +304,9 @@ def _to_si(value: object, kind_name: str) -> float:
             f"expected {_a(kind.name)} as text with a unit",
             f'write e.g. "{kind.example}"',
         )
+    fast = _simple_si(value, kind.name)
+    if fast is not None:
+        return fast
     q = parse(value)
     if q.unitless:
         if q.magnitude == 0:
@@ -262,7 +335,7 @@ def _to_si(value: object, kind_name: str) -> float:
             f'"{value}" names an angle unit, so it is not {_a(kind.name)}',
             f'write {_a(kind.name)}, e.g. "{kind.example}"',
         )
-    if kind.name == "torque" and any(ureg.get_dimensionality(u) == _ENERGY for u in dict(q._units)):
+    if kind.name == "torque" and any(registry().get_dimensionality(u) == _energy() for u in dict(q._units)):
         raise QuantityError(
             "UNIT003",
             f'"{value}" is an energy, not a torque',
@@ -273,10 +346,50 @@ def _to_si(value: object, kind_name: str) -> float:
     return 0.0 if si == 0 else si  # -0.0 would print as "-0"
 
 
+# The texts nearly every spec is written in ("300 mm", "-90 deg", "1.2 kg") are converted
+# without pint: a number and one of these units, each with the kind it is and its factor to
+# SI exactly as pint states it (tests/test_units_fast.py compares every entry with pint).
+# pint costs ~0.5 ms per text and its registry ~50 ms per process; anything else, and any
+# unit of another kind than the field's, still goes through pint and its checks.
+_SIMPLE_UNITS: dict[str, tuple[str, str]] = {
+    "mm": ("length", "0.001"),
+    "cm": ("length", "0.01"),
+    "m": ("length", "1.0"),
+    "deg": ("angle", "0.017453292519943295"),
+    "rad": ("angle", "1.0"),
+    "g": ("mass", "0.001"),
+    "kg": ("mass", "1.0"),
+    "s": ("time", "1.0"),
+    "ms": ("time", "0.001"),
+    "N": ("force", "1.0"),
+    "N*m": ("torque", "1.0"),
+    "Hz": ("frequency", "1.0"),
+    "m/s": ("linear_velocity", "1.0"),
+    "mm/s": ("linear_velocity", "0.001"),
+    "rad/s": ("angular_velocity", "1.0"),
+    "deg/s": ("angular_velocity", "0.017453292519943295"),
+    "kg*m^2": ("inertia", "1.0"),
+}
+# at most 15 significant digits and a small exponent: always a finite float, read as pint reads it
+_SIMPLE = re.compile(r"([+-]?[0-9]{1,15}(?:\.[0-9]{1,15})?(?:[eE][+-]?[0-9]{1,2})?) {0,4}([A-Za-z*/^2]+)")
+
+
+def _simple_si(text: str, kind_name: str) -> float | None:
+    """The SI value of a plain "<number> <unit>" text of this kind, None for anything else."""
+    m = _SIMPLE.fullmatch(text.strip()) if len(text) <= MAX_TEXT else None
+    if m is None:
+        return None
+    unit = _SIMPLE_UNITS.get(m.group(2))
+    if unit is None or unit[0] != kind_name:
+        return None
+    si = float(Decimal(repr(float(m.group(1)))) * Decimal(unit[1]))
+    return 0.0 if si == 0 else si
+
+
 def _convert(q: pint.Quantity[Any], target: Any) -> float:
     """Multiply by the conversion factor in decimal, so that "175 mm" is 0.175 m and not
     0.17500000000000002 (which would then be printed, diffed and compared as such)."""
-    factor = ureg.Quantity(1, q.units).to(target).magnitude
+    factor = registry().Quantity(1, q.units).to(target).magnitude
     return float(Decimal(repr(float(q.magnitude))) * Decimal(repr(float(factor))))
 
 

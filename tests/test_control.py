@@ -109,6 +109,8 @@ def _variant(tmp: Path, policy: str) -> Path:
         "    - {name: zero, group: arm, pose: zero}\n    - {name: ready, group: arm, pose: ready}\n",
         "    - {name: zero, group: arm, joints: {lift_joint: {value: 0 mm, source: test}}}\n",
     )
+    # the collision matrix's default state was 'ready'; the remaining state is 'zero'
+    text = text.replace("collision_matrix: {default_state: ready,", "collision_matrix: {default_state: zero,")
     (tmp / "specs").mkdir()
     spec = tmp / "specs" / "warehouse_arm.yaml"
     spec.write_text(text)

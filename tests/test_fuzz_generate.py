@@ -48,6 +48,11 @@ PAYLOADS = [
     "\x1b[31mred",
     "é—ü 🤖",
     "x" * 3000,
+    # names real robots have and the spec accepts for links, joints and frames (issue 12):
+    # the Xacro derives property names from them, which must stay identifiers
+    "flange-tool0",
+    "link_0.0",
+    "2dof_planar",
 ]
 
 

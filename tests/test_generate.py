@@ -72,6 +72,7 @@ def test_package_layout(generated: tuple[Path, Path]) -> None:
         "launch/control.launch.py",
         "rviz/warehouse_arm.rviz",
         "evidence/known_poses.md",
+        "evidence/collision_matrix.md",
         "evidence/frames.md",
         "evidence/frames.dot",
     }
@@ -98,7 +99,7 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
     }
     assert first == second
     again = cli("generate", str(spec_a), cwd=tmp_path / "a")
-    assert again.returncode == 0 and "wrote 0 files, 13 unchanged" in again.stdout
+    assert again.returncode == 0 and "wrote 0 files, 14 unchanged" in again.stdout
     # and what the repository has committed is the same bytes
     committed = ROOT / "generated" / PKG
     assert {k: (committed / k).read_bytes() for k in first} == first

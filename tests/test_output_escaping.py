@@ -477,3 +477,94 @@ def test_mermaid_label_keeps_to_its_quotes() -> None:
         r"#(quot|lt|gt|\d+);", lambda m: {"quot": '"', "lt": "<", "gt": ">"}.get(m[1]) or chr(int(m[1])), label
     )
     assert decoded == PAYLOAD.replace("\n", "\\n").replace("\t", "\\t").replace("\u2028", "\\u2028")
+
+
+# --------------------------------------------------------------------------- link and joint names
+
+# Names ROS accepts (urdfdom: any unique string; tf2: not empty, no leading '/'), as real robots
+# have them (flange-tool0 in Universal Robots, link_0.0 in Allegro, 2dof_planar), and names that
+# break each output language if written raw.
+# (tool_link, elbow_joint, forearm_link) renamed at once, one spec per case to keep the test fast
+ROS_NAMES = [
+    ("flange-tool0", "link_0.0", "2dof_planar"),
+    ("a|b`c<d>&'\"e#f*g_[h]", "é—ü🤖", "x:y/z.{{7}}"),
+]
+PLAIN_NAMES = ("plain_link", "plain_joint", "plain_forearm")
+
+
+def renamed(names: tuple[str, str, str]) -> str:
+    """The example with ``tool_link``, ``elbow_joint`` and ``forearm_link`` renamed everywhere."""
+    text = EXAMPLE_TEXT
+    for old, new in zip(("tool_link", "elbow_joint", "forearm_link"), names, strict=True):
+        # a YAML double-quoted string (JSON without \\u escapes: PyYAML reads no surrogate pairs)
+        text = re.sub(rf"\b{old}\b", lambda _, new=new: json.dumps(new, ensure_ascii=False), text)
+    return text
+
+
+@pytest.mark.parametrize("names", ROS_NAMES, ids=["ros-style", "markup"])
+def test_names_ros_accepts_generate_and_every_output_parses_back(names: tuple[str, str, str], tmp_path: Path) -> None:
+    link, joint, forearm = names
+    files = generated(write_spec(tmp_path, renamed(names)))
+    (tmp_path / "plain").mkdir()
+    ref = generated(write_spec(tmp_path / "plain", renamed(PLAIN_NAMES)))
+    dots = [rel for rel in files if rel.endswith(".dot")]
+    assert_outputs_are_data(
+        {k: v for k, v in files.items() if k not in dots}, {k: v for k, v in ref.items() if k not in dots}, tmp_path
+    )
+    # Graphviz reads the same graph, with the new names as node names
+    back = dict(zip(names, PLAIN_NAMES, strict=True))
+    for rel in dots:
+        nodes, edges = dot_shape(files[rel], tmp_path)
+        want_nodes, want_edges = dot_shape(ref[rel], tmp_path)
+        assert [back.get(n, n) for n in nodes] == want_nodes
+        assert [(back.get(a, a), back.get(b, b), lb) for a, b, lb in edges] == want_edges
+    # the URDF and the Xacro expanded by xacro hold the names as data, read back by yourdfpy
+    written = yourdfpy.URDF.load(
+        _written(files, tmp_path), build_scene_graph=False, load_meshes=False, build_collision_scene_graph=False
+    )
+    for urdf in (written, expanded_urdf(files, tmp_path)):
+        assert {link, forearm} <= {lk.name for lk in urdf.robot.links}
+        assert joint in {j.name for j in urdf.robot.joints}
+    # xacro property names stay identifiers xacro accepts, one definition each
+    import xacro
+
+    props = re.findall(r'<xacro:property name="([^"]+)"', files["urdf/warehouse_arm.urdf.xacro"])
+    assert props and len(props) == len(set(props))
+    assert all(xacro.is_valid_name(p) and not p.startswith("__") for p in props)
+    # the SRDF chain, the ros2_control joint and the controllers YAML name the same elements
+    srdf = etree.fromstring(files["srdf/warehouse_arm.srdf"].encode())
+    assert link in {c.get("tip_link") for c in srdf.iter("chain")}
+    urdf_xml = etree.fromstring(files["urdf/warehouse_arm.urdf"].encode())
+    assert joint in {j.get("name") for rc in urdf_xml.iter("ros2_control") for j in rc.iter("joint")}
+    ctrl = yaml.safe_load(files["config/ros2_controllers.yaml"])
+    assert any(joint in (c["ros__parameters"].get("joints") or []) for c in ctrl.values() if isinstance(c, dict))
+
+
+@pytest.mark.parametrize(
+    ("name", "why"),
+    [("/tool_link", "'/'"), ("tool link", "whitespace"), ("tool\tlink", "whitespace"), ("a${x}", "'$'"), ("", "empty")],
+)
+def test_names_no_consumer_can_take_are_refused_on_their_line(
+    name: str, why: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # tf2 refuses a leading '/' (validateFrameId), MoveIt trims SRDF names (a space would not be the
+    # same name), and the Xacro would evaluate '$'
+    text = plant("  - name: tool_link\n", f"  - name: {quoted(name)}\n")
+    first = refused(write_spec(tmp_path, text), "SPEC050")
+    assert int(first["line"]) == line_of(text, f"  - name: {quoted(name)}\n")
+    assert why.strip("'") in first["msg"] or why in first["msg"]
+
+
+@pytest.mark.parametrize("stem", ["2dof_planar", "flange-tool0", "link_0.0", "__init__", "_x", "é", "a b", "class"])
+def test_xacro_property_stems_become_names_xacro_accepts(stem: str) -> None:
+    import xacro
+
+    from descgen.render.views import Values
+
+    v = Values(xacro=True)
+    ref = v(stem + "_xyz", "1 2 3", None)
+    name = ref.removeprefix("${").removesuffix("}")
+    assert xacro.is_valid_name(name) and not name.startswith("__"), name
+    # two stems made equal by sanitising keep their own values
+    other = v(stem.replace("-", ".") + "_xyz", "4 5 6", None) if "-" in stem else None
+    assert other is None or other != ref

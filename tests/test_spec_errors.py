@@ -76,7 +76,8 @@ CASES = [
         "CTRL001",
         "elbo_joint",
     ),
-    ("bad-name", "  - name: tool_link\n", "  - name: tool-link\n", "SPEC050", "tool-link"),
+    # '-' is a name ROS accepts (flange-tool0); tf2 refuses a leading '/'
+    ("bad-name", "  - name: tool_link\n", "  - name: /tool_link\n", "SPEC050", "/tool_link"),
     ("wrong-joint-type", "    type: prismatic\n", "    type: slider\n", "SPEC003", "type: slider"),
     ("missing-key", "    parent: upper_link\n", "", "SPEC002", "- name: elbow_joint"),
     (

@@ -50,7 +50,7 @@ SPOILED = {
 def test_each_planted_fault_is_reported_at_its_messages(tmp_path: Path, fault: str) -> None:
     bag = tmp_path / "rec"
     scenario.write(ROBOT, bag, (fault,))
-    rep = bagaudit.audit(bag, "odom", max_age_ns=100 * MS)
+    rep = bagaudit.audit(bag, "odom", max_age_ns=100 * MS, keep_results=True)
     kind, spoiled = SPOILED[fault]
     results = camera_results(rep)
     assert [round(t, 6) for t, _ in results] == [round(k / 30 + 0.005, 6) for k in range(300)]
@@ -65,7 +65,7 @@ def test_clean_recording_is_all_ok_in_both_storages(tmp_path: Path) -> None:
         counts = scenario.write(ROBOT, bag, (), duration=3.0, storage=storage)
         assert counts["/camera/camera_info"] == 90 and counts["/tf"] == 300
         assert next(bag.glob("*.mcap" if storage == "mcap" else "*.db3")).is_file()
-        rep = bagaudit.audit(bag, "odom", max_age_ns=100 * MS)
+        rep = bagaudit.audit(bag, "odom", max_age_ns=100 * MS, keep_results=True)
         assert rep.lookups == 90 and rep.counts["ok"] == 90
 
 
@@ -75,7 +75,7 @@ def test_max_age_catches_interpolation_across_a_gap(tmp_path: Path) -> None:
     # waiting 2 s, the transforms after the gap have arrived: tf2 would interpolate across it
     silent = bagaudit.audit(bag, "odom", wait_ns=2000 * MS)
     assert silent.counts["ok"] == silent.lookups
-    flagged = bagaudit.audit(bag, "odom", wait_ns=2000 * MS, max_age_ns=100 * MS)
+    flagged = bagaudit.audit(bag, "odom", wait_ns=2000 * MS, max_age_ns=100 * MS, keep_results=True)
     stale = [k for k, (_, o) in enumerate(camera_results(flagged)) if o == "stale"]
     # waiting 2 s, k = 120..149 interpolate between the 3.98 s and 5.00 s samples; stale are
     # those more than 100 ms from both: 4.08 < k/30 + 0.005 < 4.90, k = 123 (4.105 s) to 146 (4.872 s)

@@ -14,6 +14,17 @@ from ..model import Robot
 from .verdict import Outcome
 
 
+def evidence_folder(package: Path, plant: str, faults: object) -> Path:
+    """Where a run without ``--out`` writes. The committed evidence belongs to the documented
+    mock run; an experiment (a simulated plant, planted faults) goes to a new scratch folder
+    so it can never silently replace what ``check`` and the evidence page vouch for."""
+    if plant == "mock" and not faults:
+        return package / "evidence"
+    import tempfile
+
+    return Path(tempfile.mkdtemp(prefix="descgen-control-"))
+
+
 def write_evidence(out: Outcome, folder: Path, robot: Robot, plots: bool = True) -> list[str]:
     """lifecycle.jsonl/.md, interfaces.md, desired_vs_measured.csv, plots, MCAP, verdict.json.
     ``plots=False``: all but the plots (``descgen check`` compares their data, not their bytes)."""

@@ -16,11 +16,12 @@ from typing import Any
 from .. import kinematics, mimic
 from .. import model as m
 from ..spec.convert import POSITION
-from ..spec.models import NAME_PATTERN
+from ..spec.models import NAME_PATTERN, is_element_name
 from .spec import SpecWriter
 
 TOLERANCE = 1e-6  # m: 0.001 mm
-_NAME = re.compile(NAME_PATTERN)  # a pose only names what validate accepts: a bad name fails where it is
+# a pose only names what validate accepts: a bad name fails where it is
+_NAME = re.compile(NAME_PATTERN)  # pose names
 COMMENT = "model value (forward kinematics of the imported description), not a measurement"
 
 
@@ -51,7 +52,7 @@ def _free(robot: m.Robot, values: tuple[tuple[str, float], ...]) -> dict[str, fl
     for name, v in values:
         j = robot.joint(name)
         if (
-            not _NAME.fullmatch(name)
+            not is_element_name(name)
             or j is None
             or j.type not in m.ONE_DOF
             or not math.isfinite(v)
@@ -69,7 +70,7 @@ def _pose(
     measured = []
     for frame in frames:
         t = at.get(frame)
-        if t is None or not _NAME.fullmatch(frame):  # unconnected, or a name validate refuses (elsewhere)
+        if t is None or not is_element_name(frame):  # unconnected, or a name validate refuses (elsewhere)
             continue
         xyz = [w.q(float(t[i, 3]) + 0.0, "length", "offset") for i in range(3)]
         measured.append({"frame": frame, "xyz": xyz, "tolerance": w.q(TOLERANCE, "length", "tolerance")})

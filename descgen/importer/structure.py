@@ -18,7 +18,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .. import model as m
-from ..spec.models import NAME_PATTERN, XACRO_TAGS
+from ..render.views import identifier
+from ..spec.models import NAME_PATTERN, XACRO_TAGS, is_element_name
 from ..spec.sensors import OPTICAL_RPY
 from .spec import Data, SpecWriter
 
@@ -64,7 +65,7 @@ def _cameras(robot: m.Robot, w: SpecWriter, out: Structure) -> None:
     links = {lk.name: lk for lk in robot.links}
     for lk in robot.links:
         name = lk.name.removesuffix("_link")
-        if name == lk.name or not re.fullmatch(NAME_PATTERN, name):
+        if name == lk.name or not is_element_name(name):
             continue
         body = by_child.get(lk.name)
         optical = by_child.get(f"{name}_optical_frame")
@@ -106,7 +107,8 @@ def _part_name(links: list[str], taken: set[str]) -> str:
     """The link names' common ending (``left_wheel``, ``right_wheel`` -> ``wheel``), else the
     first name; made unique and never a xacro tag."""
     ending = _common_ending(links).strip("_")
-    base = ending if re.fullmatch(NAME_PATTERN, ending) else links[0]
+    # a part becomes a xacro macro: its name is an identifier even when the link names are not
+    base = ending if re.fullmatch(NAME_PATTERN, ending) else identifier(links[0])
     name, k = base, 2
     while name in taken or name in XACRO_TAGS:
         name, k = f"{base}_{k}", k + 1

@@ -14,7 +14,7 @@ from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
 from . import context, header
-from .formatting import comment, dot, mdcell, mermaid, num, pyinner, pystr, vec, yamlstr
+from .formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
 
 XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
 
@@ -45,7 +45,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     env.filters["comment"] = comment
     env.filters["mdcell"] = mdcell
     # every output language gets its own escaping (DESIGN.md, "Trust boundary")
-    for f in (dot, mermaid, pyinner, pystr, yamlstr):
+    for f in (dot, mdcode, mermaid, pyinner, pystr, yamlstr):
         env.filters[f.__name__] = f
     return env
 
@@ -71,6 +71,8 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append((f"srdf/{n}.srdf", "robot.srdf.j2", False))
     if robot.known_poses:
         files.append(("evidence/known_poses.md", "known_poses.md.j2", False))
+    if robot.semantic is not None and robot.semantic.matrix is not None:
+        files.append(("evidence/collision_matrix.md", "collision_matrix.md.j2", False))
     files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
     return files
 

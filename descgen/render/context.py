@@ -10,7 +10,7 @@ from markupsafe import Markup
 from .. import derive, display
 from ..importer.passthrough import for_xacro
 from ..mesh_paths import other_packages
-from ..model import DisabledPair, Robot
+from ..model import CollisionMatrix, DisabledPair, Robot
 from .control_blocks import control_blocks, control_depends
 from .formatting import num, vec, xacro_text
 from .views import Values, items
@@ -206,9 +206,13 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     disabled: list[DisabledPair] = []
     if sem is not None:
         explicit = {frozenset((d.link1, d.link2)) for d in sem.disabled_collisions}
-        disabled = [
-            DisabledPair(a, b, "Adjacent") for a, b in derive.adjacent_pairs(robot) if frozenset((a, b)) not in explicit
-        ]
+        # a sampled matrix (descgen/collision.py) replaces the adjacent-only default
+        computed = (
+            list(sem.matrix.pairs)
+            if sem.matrix is not None
+            else [DisabledPair(a, b, "Adjacent") for a, b in derive.adjacent_pairs(robot)]
+        )
+        disabled = [d for d in computed if frozenset((d.link1, d.link2)) not in explicit]
         disabled += list(sem.disabled_collisions)
     root = robot.root() or (robot.links[0].name if robot.links else "base_link")
     extent = max((abs(c) for j in robot.joints for c in j.origin.xyz), default=1.0)
@@ -232,6 +236,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "passthrough": [Markup(for_xacro(x) if xacro else x) for x in robot.passthrough],
         "semantic": sem,
         "disabled": disabled,
+        "matrix": _matrix_summary(sem.matrix, disabled) if sem is not None and sem.matrix is not None else None,
         "fixed_frame": root,
         "poses": known_pose_tables(robot) if not xacro else [],
         "frame_nodes": frame_graph(robot)[0] if not xacro else [],
@@ -250,4 +255,26 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
             # every folder of the package (render_package fills it in: it knows the files)
             "install_dirs": [],
         },
+    }
+
+
+def _matrix_summary(matrix: CollisionMatrix, disabled: list[DisabledPair]) -> dict[str, Any]:
+    """Settings and per-reason counts of the collision matrix, for the SRDF comment and
+    evidence/collision_matrix.md (counts are of what the SRDF lists, User pairs included)."""
+    s = matrix.settings
+    reasons = ("Adjacent", "Default", "Always", "Never", "User")
+    counts = {r: sum(1 for d in disabled if d.reason == r) for r in reasons}
+    counts["other"] = len(disabled) - sum(counts.values())
+    return {
+        "seed": s.seed,
+        "samples": s.samples,
+        "fraction": num(s.fraction),
+        "padding": num(s.padding),
+        "state": matrix.state,
+        "hash": matrix.input_hash,
+        "counts": counts,
+        "checked": matrix.checked,
+        "enabled": max(0, matrix.checked - len({frozenset((d.link1, d.link2)) for d in disabled})),
+        "skipped": list(matrix.skipped),
+        "pairs": disabled,
     }

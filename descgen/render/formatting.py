@@ -117,3 +117,14 @@ def mdcell(text: object) -> str:
     for ch in "\\|`*_[]<>":
         s = s.replace(ch, "\\" + ch)
     return s
+
+
+def mdcode(text: object) -> str:
+    """A name as a code span in a Markdown table cell: fenced by more backticks than the
+    longest run in it (CommonMark), with ``|`` escaped (GFM splits cells before code spans);
+    a plain name prints as it always did, in single backticks."""
+    s = visible(text)
+    run = max((len(m) for m in re.findall(r"`+", s)), default=0)
+    fence = "`" * (run + 1)
+    pad = " " if s.startswith("`") or s.endswith("`") else ""
+    return fence + pad + s.replace("|", "\\|") + pad + fence

@@ -8,6 +8,7 @@ part becomes one macro whose instances differ only by names and origin.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -116,6 +117,7 @@ class Values:
         value already took the name: names are built from spec names (link ``a_collision``'s
         box and link ``a``'s collision box are both ``a_collision_size``), and xacro keeps only
         the last definition of a name. The same stem and value always give the same property."""
+        stem = identifier(stem)
         name, k = stem, 1
         while (existing := self._index.get(name)) is not None:
             if existing.value == value:
@@ -132,6 +134,19 @@ class Values:
         if s is None:
             return None
         return xacro_text(s) if self.xacro else s
+
+
+_NOT_IDENTIFIER = re.compile(r"[^A-Za-z0-9_]")
+
+
+def identifier(stem: str) -> str:
+    """``stem`` as a xacro property name: xacro takes only Python identifiers that do not start
+    with ``__`` (xacro 2.x ``is_valid_name``), but link and joint names may hold ``-``, ``.``
+    or a leading digit (``flange-tool0``, ``link_0.0``, ``2dof_planar``). Every other character
+    becomes ``_`` and a name not starting with a letter gets ``p_``; names made equal this way
+    are kept apart by ``Values`` (``_2``, ``_3``...)."""
+    out = _NOT_IDENTIFIER.sub("_", stem)
+    return out if out[:1].isalpha() else "p_" + out
 
 
 _ZERO = "0 0 0"

@@ -27,8 +27,50 @@ from .quantity import ZERO, ZERO_ANGLE, Angle, Frequency, InertiaQ, Length, Mass
 
 NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
 Name = Annotated[str, StringConstraints(pattern=NAME_PATTERN, max_length=128)]
-"""Link, joint, frame, controller and group names. ros2_control builds ``<joint>/<interface>``
-and parameter paths from them, so they are plain identifiers (see reference/conventions.md)."""
+"""Names descgen or ROS turn into identifiers: the robot (package and file names), parts (Xacro
+macros), controllers (ROS node names), SRDF groups, known poses, hardware params. Plain
+identifiers (see reference/conventions.md)."""
+
+# Link, joint and frame names are what ROS 2 Jazzy accepts: urdfdom takes any string (unique),
+# tf2 refuses an empty id and a leading '/' (validateFrameId), MoveIt's SRDF trims whitespace, so
+# a name with whitespace would not be the same name there. Real robots use '-', '.', leading
+# digits ('flange-tool0', 'link_0.0', '2dof_planar'); outputs escape them or derive identifiers
+# from them (render/views.py). '$' is refused: the Xacro writes names where xacro evaluates '$'.
+ELEMENT_NAME_PATTERN = r"^[^/$\s\x00-\x1f\x7f-\x9f][^$\s\x00-\x1f\x7f-\x9f]*$"
+_NOT_IN_NAME = re.compile(
+    r"[$\s\x00-\x1f\x7f-\x9f\u2028\u2029\u200b-\u200f\u202a-\u202e\u2060-\u206f\ufeff\ud800-\udfff\ufffe\uffff]"
+)
+
+
+def _element_name(value: str) -> str:
+    hint = "use a name without spaces, '$' or control characters, not starting with '/' (e.g. elbow_joint)"
+    if not value:
+        raise error("SPEC050", "the name is empty", hint)
+    bad = _NOT_IN_NAME.search(value)
+    if bad:
+        raise error(
+            "SPEC050",
+            f"{value!r} is not a valid name: {'whitespace' if bad.group().isspace() else 'the character'} "
+            f"'{_shown(bad.group())}' at position {bad.start() + 1}",
+            hint,
+        )
+    if value.startswith("/"):
+        raise error("SPEC050", f"{value!r} is not a valid name: tf2 refuses a frame id that starts with '/'", hint)
+    return value
+
+
+def is_element_name(value: str) -> bool:
+    """Whether ``value`` is a link, joint or frame name the spec accepts."""
+    return 0 < len(value) <= 128 and not value.startswith("/") and _NOT_IN_NAME.search(value) is None
+
+
+ElementName = Annotated[
+    str,
+    StringConstraints(max_length=128),
+    AfterValidator(_element_name),
+    Field(json_schema_extra={"pattern": ELEMENT_NAME_PATTERN}),
+]
+"""Link, joint and frame names, and every reference to one."""
 
 # Spec text reaches XML, Python, YAML, Markdown, Mermaid and DOT outputs. Templates escape
 # it for each; what no escaping can carry is refused here, so that validate accepts nothing
@@ -282,7 +324,7 @@ class LinkBody(Base):
 
 
 class LinkSpec(LinkBody):
-    name: Name
+    name: ElementName
 
 
 class LimitSpec(Base):
@@ -302,7 +344,7 @@ class DynamicsSpec(Base):
 
 
 class MimicSpec(Base):
-    joint: Name
+    joint: ElementName
     multiplier: Number = 1.0
     offset: Raw | None = None
 
@@ -319,7 +361,7 @@ JointType = Literal["fixed", "revolute", "continuous", "prismatic", "floating", 
 
 class JointBody(Base):
     type: JointType
-    parent: Name
+    parent: ElementName
     axis: Axis | None = None
     limit: LimitSpec | None = None
     dynamics: DynamicsSpec | None = None
@@ -330,14 +372,14 @@ class JointBody(Base):
 
 
 class JointSpec(JointBody):
-    name: Name
-    child: Name
+    name: ElementName
+    child: ElementName
     origin: Origin = Origin()
 
 
 class PartInstance(Base):
-    link: Name
-    joint: Name
+    link: ElementName
+    joint: ElementName
     origin: Origin = Origin()
     source: Source | None = None
 
@@ -375,9 +417,9 @@ class SensorSpec(Base):
     """A sensor frame ``<name>_link`` on a fixed joint ``<name>_joint``. A camera also gets
     ``<name>_optical_frame`` (z forward, x right, y down; REP 103)."""
 
-    name: Name
+    name: ElementName
     type: Literal["camera", "lidar", "imu", "generic"]
-    parent: Name
+    parent: ElementName
     origin: Origin = Origin()
     link: LinkBody = LinkBody()
     source: Source | None = None
@@ -416,7 +458,7 @@ class JointStateSpec(Base):
 
 
 class ControlJointSpec(Base):
-    name: Name
+    name: ElementName
     command: list[JointInterfaceName | JointCommandSpec] = []
     state: list[JointInterfaceName | JointStateSpec] = []
     initial_position: Raw | None = None
@@ -540,7 +582,7 @@ class ControlSensorSpec(Base):
 
     name: Name
     kind: Literal["imu", "force_torque", "generic"] = "generic"
-    frame: Name | None = None  # the link it measures in; written as its frame_id param
+    frame: ElementName | None = None  # the link it measures in; written as its frame_id param
     state: list[Iface] = []
     params: HwParams = {}
     source: Source | None = None
@@ -583,8 +625,8 @@ class Ros2ControlSpec(Base):
 
 
 class ChainSpec(Base):
-    base: Name
-    tip: Name
+    base: ElementName
+    tip: ElementName
 
 
 class GroupSpec(Base):
@@ -592,16 +634,17 @@ class GroupSpec(Base):
     chain: ChainSpec | None = None
     # more chains of the same group (an SRDF group may hold several; descgen import writes them)
     chains: list[ChainSpec] = []
-    links: list[Name] = []
-    joints: list[Name] = []
+    links: list[ElementName] = []
+    joints: list[ElementName] = []
     subgroups: list[Name] = []
 
 
 class GroupStateSpec(Base):
-    name: Name
+    # MoveIt takes any string ('hold-up' in xarm7.srdf); a known pose it names stays an identifier
+    name: ElementName
     group: Name
     pose: Name | None = None  # take the joint values of a known pose
-    joints: dict[Name, Raw] = {}
+    joints: dict[ElementName, Raw] = {}
 
     @model_validator(mode="after")
     def _values(self) -> GroupStateSpec:
@@ -617,21 +660,32 @@ class GroupStateSpec(Base):
 class EndEffectorSpec(Base):
     name: Name
     group: Name
-    parent_link: Name
+    parent_link: ElementName
     parent_group: Name | None = None
 
 
 class VirtualJointSpec(Base):
-    name: Name
+    name: ElementName
     type: Literal["fixed", "floating", "planar"]
-    parent_frame: Name
-    child_link: Name
+    parent_frame: ElementName
+    child_link: ElementName
 
 
 class DisabledPairSpec(Base):
-    link1: Name
-    link2: Name
+    link1: ElementName
+    link2: ElementName
     reason: Annotated[OneLine, StringConstraints(max_length=200)] = "User"
+
+
+class CollisionMatrixSpec(Base):
+    """Settings of the sampled self-collision matrix; every field is written into the SRDF
+    and evidence/collision_matrix.md, so the same spec gives the same bytes."""
+
+    default_state: Name | None = None  # a group state; default: the first one
+    seed: Annotated[int, Field(ge=0, le=2**32 - 1)] = 0
+    samples: Annotated[int, Field(ge=100, le=1_000_000)] = 10000
+    fraction: Annotated[float, Field(gt=0.0, lt=1.0)] = 0.95
+    padding: Length = ZERO
 
 
 class SemanticSpec(Base):
@@ -639,21 +693,22 @@ class SemanticSpec(Base):
     groups: list[GroupSpec] = []
     group_states: list[GroupStateSpec] = []
     end_effectors: list[EndEffectorSpec] = []
-    passive_joints: list[Name] = []
+    passive_joints: list[ElementName] = []
     disable_collisions: list[DisabledPairSpec] = []
+    collision_matrix: CollisionMatrixSpec | None = None
 
 
 class FrameMeasurementSpec(Base):
-    frame: Name
+    frame: ElementName
     xyz: tuple[Length, Length, Length]
     tolerance: Tolerance
-    relative_to: Name | None = None
+    relative_to: ElementName | None = None
     source: Source | None = None
 
 
 class KnownPoseSpec(Base):
     name: Name
-    joints: dict[Name, Raw] = {}
+    joints: dict[ElementName, Raw] = {}
     frames: list[FrameMeasurementSpec] = []
     source: Source | None = None
     description: Text | None = None
@@ -662,8 +717,8 @@ class KnownPoseSpec(Base):
 class ExternalFrameSpec(Base):
     """A transform something outside the URDF publishes (localisation, a driver, calibration)."""
 
-    parent: Name
-    child: Name
+    parent: ElementName
+    child: ElementName
     owner: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
     static: bool = False
     source: Source | None = None
@@ -674,7 +729,7 @@ class JointStateSourceSpec(Base):
 
     node: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
     kind: Literal["measured", "desired"] = "measured"
-    joints: list[Name] = []
+    joints: list[ElementName] = []
     source: Source | None = None
 
 

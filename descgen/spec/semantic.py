@@ -58,7 +58,33 @@ def semantic(conv: Converter, sem: s.SemanticSpec, poses: tuple[m.KnownPose, ...
             for i, d in enumerate(sem.disable_collisions)
         ),
         conv.where(base),
+        collision_matrix=_matrix_settings(conv, sem),
     )
+
+
+def _matrix_settings(conv: Converter, sem: s.SemanticSpec) -> m.MatrixSettings | None:
+    cm = sem.collision_matrix
+    if cm is None:
+        return None
+    path = ("semantic", "collision_matrix")
+    if cm.default_state is not None and cm.default_state not in {g.name for g in sem.group_states}:
+        conv.error(
+            "SPEC100",
+            f"collision_matrix.default_state names unknown group state '{cm.default_state}'",
+            f"group states: {', '.join(g.name for g in sem.group_states) or 'none'}",
+            "semantic:collision_matrix",
+            conv.where((*path, "default_state")),
+        )
+    padding = cm.padding.si
+    if not 0.0 <= padding <= 0.1:
+        conv.error(
+            "SPEC101",
+            f"collision_matrix.padding {padding * 1000:g} mm is outside 0 to 100 mm",
+            "padding inflates every collision shape; use a few millimetres at most",
+            "semantic:collision_matrix",
+            conv.where((*path, "padding")),
+        )
+    return m.MatrixSettings(cm.default_state, cm.seed, cm.samples, cm.fraction, padding, conv.where(path))
 
 
 def _group_states(conv: Converter, sem: s.SemanticSpec, poses: tuple[m.KnownPose, ...]) -> tuple[m.GroupState, ...]:

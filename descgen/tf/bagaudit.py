@@ -17,7 +17,8 @@ transform. Outcomes:
 from __future__ import annotations
 
 import itertools
-from collections import Counter
+import struct
+from collections import Counter, deque
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -126,6 +127,94 @@ def _stamp(header: Any) -> int:
     return int(header.stamp.sec) * 1_000_000_000 + int(header.stamp.nanosec)
 
 
+_HEADER_LE, _HEADER_BE = struct.Struct("<iII"), struct.Struct(">iII")
+
+
+def _raw_header(raw: bytes) -> tuple[int, str]:
+    """(stamp ns, frame_id) of a CDR message whose first field is a std_msgs/Header, read
+    straight from the bytes: a sensor message is looked up by its header alone, and
+    deserializing a whole CameraInfo or image costs many times more. Layout: 4 bytes of
+    encapsulation (byte 1 says the byte order), int32 sec, uint32 nanosec, uint32 length
+    of frame_id with its NUL, the characters."""
+    if len(raw) < 16 or raw[0] != 0 or raw[1] > 1:
+        raise ValueError("not a CDR message")
+    sec, nanosec, size = (_HEADER_LE if raw[1] else _HEADER_BE).unpack_from(raw, 4)
+    if not 1 <= size <= len(raw) - 16 or raw[15 + size] != 0:
+        raise ValueError("header frame_id runs past the message")
+    return sec * 1_000_000_000 + nanosec, raw[16 : 15 + size].decode()
+
+
+@dataclass
+class _Pending:
+    """A sensor message waiting for its deadline (log time + wait) before it is looked up."""
+
+    deadline: int
+    topic: str
+    log_ns: int
+    stamp: int
+    frame: str
+
+
+class _Replay:
+    """The audit as a stream: transforms go into the buffer in log-time order, and each
+    sensor message is looked up once every transform logged by its deadline is in. Holds
+    only the buffer (cache_ns of transforms), the messages still inside their wait, and
+    bounded counts: memory does not grow with the recording's length."""
+
+    def __init__(
+        self, target: str, wait_ns: int, max_age_ns: int | None, cache_ns: int, examples: int, keep_results: bool
+    ) -> None:
+        self.target, self.wait_ns, self.max_age_ns, self.examples = target, wait_ns, max_age_ns, examples
+        self.buf = BufferCore(cache_ns)
+        self.report = Report()
+        self.keep_results = keep_results
+        self.pending: deque[_Pending] = deque()
+        self.frames: set[str] = set()  # every frame named in the recording, for BAG012
+        self.shown_examples: Counter[str] = Counter()
+
+    def sensor(self, topic: str, log_ns: int, stamp: int, frame: str) -> None:
+        self.frames.add(frame)
+        self.pending.append(_Pending(log_ns + self.wait_ns, topic, log_ns, stamp, frame))
+
+    def transforms(self, log_ns: int, msg: Any, static: bool) -> None:
+        self.flush(log_ns)  # messages whose deadline is before this transform arrived
+        for t in msg.transforms:
+            tr, ro, parent, child = t.transform.translation, t.transform.rotation, t.header.frame_id, t.child_frame_id
+            self.frames.add(parent)
+            self.frames.add(child)
+            self.buf.set_transform(
+                parent, child, _stamp(t.header), (tr.x, tr.y, tr.z), (ro.x, ro.y, ro.z, ro.w), static
+            )
+
+    def flush(self, before: int | None) -> None:
+        """Look up every waiting message whose deadline is before ``before`` (None: all)."""
+        pending = self.pending
+        while pending and (before is None or pending[0].deadline < before):
+            self._look_up(pending.popleft())
+
+    def _look_up(self, m: _Pending) -> None:
+        report = self.report
+        outcome, detail = _lookup(self.buf, self.target, m.frame, m.stamp, m.deadline, self.max_age_ns)
+        report.lookups += 1
+        report.counts[outcome] += 1
+        report.per_topic.setdefault(m.topic, Counter())[outcome] += 1
+        report.latency[_bucket((m.log_ns - m.stamp) / 1e6)] += 1
+        if self.keep_results:
+            report.results.append((m.topic, m.log_ns, outcome))
+        if outcome != "ok" and self.shown_examples[outcome] < self.examples:
+            self.shown_examples[outcome] += 1
+            report.examples.append(
+                {
+                    "topic": m.topic,
+                    "outcome": outcome,
+                    "log_time_ns": m.log_ns,
+                    "stamp_ns": m.stamp,
+                    "frame_id": m.frame,
+                    "detail": detail,
+                }
+            )
+
+
 def audit(
     path: Path,
     target: str,
@@ -134,11 +223,16 @@ def audit(
     max_age_ns: int | None = None,
     cache_ns: int = 10_000_000_000,
     examples: int = 5,
+    keep_results: bool = False,
 ) -> Report:
+    """Replay the recording once, in log-time order (the order rosbags yields: MCAP chunks
+    merged by time, sqlite3 ORDER BY timestamp). ``keep_results`` keeps every lookup's
+    outcome in ``Report.results``, which grows with the recording (tests use it)."""
     from rosbags.typesys import Stores, get_typestore
 
     ts = get_typestore(Stores.ROS2_JAZZY)
     reader = _open(path)
+    replay = _Replay(target, wait_ns, max_age_ns, cache_ns, examples, keep_results)
     try:
         connections = list(reader.connections)
         chosen = (
@@ -173,14 +267,17 @@ def audit(
                     "name a sensor topic whose messages have a std_msgs/Header",
                 )
         tf_conns = [c for c in connections if c.topic in TF_TOPICS]
-        tf_msgs: list[tuple[int, bool, Any]] = []
-        sensors: list[tuple[int, str, Any]] = []
+        header_first = {c.msgtype: _header_first(ts, c.msgtype) for c in chosen}
         for conn, log_ns, raw in reader.messages(connections=tf_conns + chosen):
-            msg = ts.deserialize_cdr(raw, conn.msgtype)
-            if conn.topic in TF_TOPICS:
-                tf_msgs.append((log_ns, conn.topic == "/tf_static", msg))
+            topic = conn.topic
+            if topic in TF_TOPICS:
+                replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
+            elif header_first[conn.msgtype]:
+                replay.sensor(topic, log_ns, *_raw_header(raw))
             else:
-                sensors.append((log_ns, conn.topic, msg))
+                header = getattr(ts.deserialize_cdr(raw, conn.msgtype), "header")  # noqa: B009
+                replay.sensor(topic, log_ns, _stamp(header), header.frame_id)
+        replay.flush(None)
     except InputError:
         raise
     except Exception as exc:  # a corrupt recording
@@ -189,46 +286,8 @@ def audit(
         ) from None
     finally:
         reader.close()
-    _check_lookups(path, target, topics, tf_msgs, sensors)
-    tf_msgs.sort(key=lambda m: m[0])
-    sensors.sort(key=lambda m: m[0] + wait_ns)
-    buf = BufferCore(cache_ns)
-    report = Report()
-    i = 0
-    for log_ns, topic, msg in sensors:
-        deadline = log_ns + wait_ns
-        while i < len(tf_msgs) and tf_msgs[i][0] <= deadline:
-            for t in tf_msgs[i][2].transforms:
-                tr, ro = t.transform.translation, t.transform.rotation
-                buf.set_transform(
-                    t.header.frame_id,
-                    t.child_frame_id,
-                    _stamp(t.header),
-                    (tr.x, tr.y, tr.z),
-                    (ro.x, ro.y, ro.z, ro.w),
-                    static=tf_msgs[i][1],
-                )
-            i += 1
-        stamp = _stamp(msg.header)
-        frame = msg.header.frame_id
-        outcome, detail = _lookup(buf, target, frame, stamp, deadline, max_age_ns)
-        report.lookups += 1
-        report.counts[outcome] += 1
-        report.per_topic.setdefault(topic, Counter())[outcome] += 1
-        report.latency[_bucket((log_ns - stamp) / 1e6)] += 1
-        report.results.append((topic, log_ns, outcome))
-        if outcome != "ok" and sum(1 for e in report.examples if e["outcome"] == outcome) < examples:
-            report.examples.append(
-                {
-                    "topic": topic,
-                    "outcome": outcome,
-                    "log_time_ns": log_ns,
-                    "stamp_ns": stamp,
-                    "frame_id": frame,
-                    "detail": detail,
-                }
-            )
-    return report
+    _check_lookups(path, target, topics, replay.report.lookups, replay.frames)
+    return replay.report
 
 
 def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
@@ -239,15 +298,16 @@ def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
     )
 
 
-def _check_lookups(
-    path: Path,
-    target: str,
-    topics: tuple[str, ...],
-    tf_msgs: list[tuple[int, bool, Any]],
-    sensors: list[tuple[int, str, Any]],
-) -> None:
-    """Refuse an audit that would pass without looking anything up."""
-    if not sensors:
+def _header_first(ts: Any, msgtype: str) -> bool:
+    """Whether a std_msgs/Header is the message's first field (so _raw_header can read it)."""
+    fields = getattr(ts.types.get(msgtype), "__dataclass_fields__", {})
+    first = next(iter(fields.values()), None)
+    return first is not None and first.name == "header" and "std_msgs/msg/Header" in str(first.type).replace("__", "/")
+
+
+def _check_lookups(path: Path, target: str, topics: tuple[str, ...], lookups: int, frames: set[str]) -> None:
+    """Refuse an audit that passed without looking anything up."""
+    if not lookups:
         what = f"the topics {', '.join(shown(t) for t in topics)} hold" if topics else "the recording has"
         raise _unusable(
             "BAG010",
@@ -255,10 +315,6 @@ def _check_lookups(
             f"nothing to look up: {what} no sensor messages with a header",
             "name a recorded sensor topic with --topic (/tf, /tf_static and /joint_states are not looked up)",
         )
-    frames = {m.header.frame_id for _, _, m in sensors}
-    for _, _, msg in tf_msgs:
-        for t in msg.transforms:
-            frames.update((t.header.frame_id, t.child_frame_id))
     if target not in frames:
         known = ", ".join(shown(f, 40) for f in sorted(frames)[:8]) + (", ..." if len(frames) > 8 else "")
         raise _unusable(
@@ -285,3 +341,33 @@ def _lookup(
             if gap > max_age_ns:
                 return "stale", f"'{link}' has no transform within {gap / 1e6:.1f} ms of the stamp"
     return "ok", ""
+
+
+MAX_JOBS = 64
+
+
+def _audit_one(path: Path, kwargs: dict[str, Any]) -> tuple[Report | None, tuple[Finding, ...]]:
+    """One recording's audit, its input errors returned rather than raised (they cross a
+    process boundary as plain data)."""
+    try:
+        return audit(path, **kwargs), ()
+    except InputError as exc:
+        return None, exc.findings
+
+
+def audit_all(paths: list[Path], target: str, jobs: int = 1, **kwargs: Any) -> list[Report]:
+    """Audit several recordings, ``jobs`` of them at a time in separate processes (each is
+    one CPU-bound stream). Every recording is audited; the input errors of all of them are
+    raised together, so one unreadable recording does not hide another's."""
+    kwargs["target"] = target
+    if jobs <= 1 or len(paths) <= 1:
+        outcomes = [_audit_one(p, kwargs) for p in paths]
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
+            outcomes = list(pool.map(_audit_one, paths, [kwargs] * len(paths)))
+    errors = [f for _, findings in outcomes for f in findings]
+    if errors:
+        raise InputError(errors)
+    return [rep for rep, _ in outcomes if rep is not None]

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_left
-from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -39,17 +39,9 @@ class TransformError(Exception):
         self.kind = kind
 
 
-@dataclass(frozen=True)
-class Sample:
-    stamp: int
-    parent: str
-    translation: Vec
-    rotation: Quat
-
-
-@dataclass(frozen=True)
-class Transform:
-    """Pose of the source frame in the target frame at ``stamp``."""
+class Transform(NamedTuple):
+    """Pose of the source frame in the target frame at ``stamp`` (a named tuple: one is
+    built per lookup, and a frozen dataclass costs a microsecond more to build)."""
 
     translation: Vec
     rotation: Quat
@@ -111,57 +103,147 @@ def _seconds(ns: int) -> str:
     return f"{ns / 1e9:.6f}"
 
 
-@dataclass
+# A pose as seven plain floats: translation x, y, z and rotation quaternion x, y, z, w.
+# Plain floats, not numpy: a lookup composes a handful of poses, and a 4x4 array per compose
+# (plus ``inv`` at the end) costs more than the arithmetic itself.
+Pose = tuple[float, float, float, float, float, float, float]
+IDENTITY: Pose = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+# Where a cache's value at a time is: (cache, older index, newer index, ratio); older ==
+# newer means the sample itself, no interpolation.
+Step = tuple["_Cache", int, int, float]
+
+
 class _Cache:
-    static: bool
-    samples: list[Sample] = field(default_factory=list)  # oldest first
+    """One child frame's samples, oldest first, with the stamps in their own list so a
+    lookup bisects it directly (no list rebuilt per call)."""
+
+    __slots__ = ("parents", "poses", "reparented", "stamps", "static")
+
+    def __init__(self, static: bool) -> None:
+        self.static = static
+        self.stamps: list[int] = []
+        self.parents: list[str] = []
+        self.poses: list[Pose] = []
+        # whether the parent ever changed: if not, a walk needs no bisect to know the parent
+        self.reparented = False
+
+    def parent_at(self, time: int) -> str:
+        """The parent the value at ``time`` hangs from, or tf2's TransformError."""
+        if not self.reparented:
+            s = self.stamps
+            if self.static or time == 0 or (s[0] <= time <= s[-1] and len(s) > 1):
+                return self.parents[-1]
+        return self.parents[self.locate(time)[1]]
 
     def newest(self) -> int:
-        return self.samples[-1].stamp if self.samples else 0
+        return self.stamps[-1] if self.stamps else 0
 
-    def get(self, time: int) -> Sample:
-        s = self.samples
-        if self.static:
-            only = s[-1]
-            return Sample(time, only.parent, only.translation, only.rotation)
-        if time == 0:
-            return s[-1]
-        if len(s) == 1:
-            if s[0].stamp == time:
-                return s[0]
+    def locate(self, time: int) -> Step:
+        """Where the value at ``time`` is, or the TransformError tf2's TimeCache gives."""
+        s = self.stamps
+        last = len(s) - 1
+        if self.static or time == 0:
+            return (self, last, last, 0.0)
+        if last == 0:
+            if s[0] == time:
+                return (self, 0, 0, 0.0)
             raise TransformError(
                 "nodata",
                 f"Lookup would require extrapolation at time {_seconds(time)}, "
-                f"but only time {_seconds(s[0].stamp)} is in the buffer",
+                f"but only time {_seconds(s[0])} is in the buffer",
             )
-        if time > s[-1].stamp:
+        if time > s[last]:
             raise TransformError(
                 "future",
                 f"Lookup would require extrapolation into the future.  Requested time "
-                f"{_seconds(time)} but the latest data is at time {_seconds(s[-1].stamp)}",
+                f"{_seconds(time)} but the latest data is at time {_seconds(s[last])}",
             )
-        if time < s[0].stamp:
+        if time < s[0]:
             raise TransformError(
                 "past",
                 f"Lookup would require extrapolation into the past.  Requested time "
-                f"{_seconds(time)} but the earliest data is at time {_seconds(s[0].stamp)}",
+                f"{_seconds(time)} but the earliest data is at time {_seconds(s[0])}",
             )
-        i = bisect_left([x.stamp for x in s], time)
-        if s[i].stamp == time:
-            return s[i]
-        one, two = s[i - 1], s[i]
-        if one.parent != two.parent:
-            return one
-        ratio = (time - one.stamp) / (two.stamp - one.stamp)
-        k = 1 - ratio
-        translation = tuple(k * a + ratio * b for a, b in zip(one.translation, two.translation, strict=True))
-        return Sample(time, one.parent, translation, slerp(one.rotation, two.rotation, ratio))  # type: ignore[arg-type]
+        i = bisect_left(s, time)
+        if s[i] == time:
+            return (self, i, i, 0.0)
+        if self.parents[i - 1] != self.parents[i]:
+            return (self, i - 1, i - 1, 0.0)  # tf2 does not interpolate across a re-parenting
+        return (self, i - 1, i, (time - s[i - 1]) / (s[i] - s[i - 1]))
+
+
+def _pose(cache: _Cache, time: int) -> Pose:
+    """A cache's (interpolated) pose at ``time``: linear translation, slerp rotation."""
+    _, i, j, ratio = cache.locate(time)
+    a = cache.poses[i]
+    if i == j:
+        return a
+    b = cache.poses[j]
+    k = 1.0 - ratio
+    ax, ay, az, aw, bx, by, bz, bw = a[3], a[4], a[5], a[6], b[3], b[4], b[5], b[6]
+    # tf2::Quaternion::slerp, inline: the shorter way round
+    dot = ax * bx + ay * by + az * bz + aw * bw
+    if dot < 0:
+        bx, by, bz, bw, dot = -bx, -by, -bz, -bw, -dot
+    theta = math.acos(min(1.0, dot))
+    if theta != 0:
+        d = 1.0 / math.sin(theta)
+        s0, s1 = math.sin(k * theta) * d, math.sin(ratio * theta) * d
+        ax, ay, az, aw = ax * s0 + bx * s1, ay * s0 + by * s1, az * s0 + bz * s1, aw * s0 + bw * s1
+    return (k * a[0] + ratio * b[0], k * a[1] + ratio * b[1], k * a[2] + ratio * b[2], ax, ay, az, aw)
+
+
+def _chain(caches: list[_Cache], time: int) -> Pose:
+    """The pose of the first cache's child in the last cache's parent at ``time``: each
+    link's pose composed onto the accumulated one (parent_T_child applied on the left)."""
+    if not caches:
+        return IDENTITY
+    tx, ty, tz, qx, qy, qz, qw = _pose(caches[0], time)
+    for cache in caches[1:]:
+        ax, ay, az, bx, by, bz, bw = _pose(cache, time)
+        # t = R(b) t + a, with R(b) v = v + w c + u x c, c = 2 u x v
+        cx, cy, cz = 2 * (by * tz - bz * ty), 2 * (bz * tx - bx * tz), 2 * (bx * ty - by * tx)
+        tx, ty, tz = (
+            tx + bw * cx + by * cz - bz * cy + ax,
+            ty + bw * cy + bz * cx - bx * cz + ay,
+            tz + bw * cz + bx * cy - by * cx + az,
+        )
+        # q = b * q
+        qx, qy, qz, qw = (
+            bw * qx + bx * qw + by * qz - bz * qy,
+            bw * qy - bx * qz + by * qw + bz * qx,
+            bw * qz + bx * qy - by * qx + bz * qw,
+            bw * qw - bx * qx - by * qy - bz * qz,
+        )
+    return (tx, ty, tz, qx, qy, qz, qw)
+
+
+def _between(target: Pose, source: Pose, time: int) -> Transform:
+    """inverse(target) * source: the source's pose in the target frame, both given in one top frame."""
+    ax, ay, az, bx, by, bz, bw = target
+    sx, sy, sz, qx, qy, qz, qw = source
+    bx, by, bz = -bx, -by, -bz  # the conjugate rotates the other way
+    vx, vy, vz = sx - ax, sy - ay, sz - az
+    cx, cy, cz = 2 * (by * vz - bz * vy), 2 * (bz * vx - bx * vz), 2 * (bx * vy - by * vx)
+    translation = (
+        vx + bw * cx + by * cz - bz * cy,
+        vy + bw * cy + bz * cx - bx * cz,
+        vz + bw * cz + bx * cy - by * cx,
+    )
+    rotation = (
+        bw * qx + bx * qw + by * qz - bz * qy,
+        bw * qy - bx * qz + by * qw + bz * qx,
+        bw * qz + bx * qy - by * qx + bz * qw,
+        bw * qw - bx * qx - by * qy - bz * qz,
+    )
+    return Transform(translation, rotation, time)
 
 
 class BufferCore:
     def __init__(self, cache_ns: int = DEFAULT_CACHE_NS) -> None:
         self.cache_ns = cache_ns
         self.caches: dict[str, _Cache] = {}
+        self.frames: set[str] = set()  # every frame named by an accepted transform (tf2 never forgets one)
 
     # -- inserting ---------------------------------------------------------------------
 
@@ -176,32 +258,42 @@ class BufferCore:
             return "TF_NO_FRAME_ID"
         if parent == child:
             return "TF_SELF_TRANSFORM"
-        values = (*translation, *rotation)
-        if any(math.isnan(v) for v in values):
+        x, y, z = translation
+        qx, qy, qz, qw = rotation
+        if math.isnan(x + y + z + qx + qy + qz + qw):  # a NaN anywhere makes the sum NaN
             return "TF_NAN_INPUT"
-        if abs(sum(q * q for q in rotation) - 1) > 10 * 1e-6 * 2:  # tf2's QUATERNION_NORMALIZATION_TOLERANCE
+        n2 = qx * qx + qy * qy + qz * qz + qw * qw
+        if abs(n2 - 1) > 10 * 1e-6 * 2:  # tf2's QUATERNION_NORMALIZATION_TOLERANCE
             return "TF_DENORMALIZED_QUATERNION"
-        norm = math.sqrt(sum(q * q for q in rotation))
-        sample = Sample(
-            stamp, parent, translation, (rotation[0] / norm, rotation[1] / norm, rotation[2] / norm, rotation[3] / norm)
-        )
+        self.frames.add(child)
+        self.frames.add(parent)
+        norm = math.sqrt(n2)
+        pose = (x, y, z, qx / norm, qy / norm, qz / norm, qw / norm)
         cache = self.caches.get(child)
         if cache is None or cache.static != static:
             cache = self.caches[child] = _Cache(static)
         if static:
-            cache.samples = [sample]
+            cache.stamps, cache.parents, cache.poses = [stamp], [parent], [pose]
             return None
-        s = cache.samples
-        if s and s[-1].stamp > stamp + self.cache_ns:
-            return "TF_OLD_DATA"
-        stamps = [x.stamp for x in s]
-        i = bisect_left(stamps, stamp)
-        if i < len(s) and s[i].stamp == stamp:
-            return None  # a sample at that time is already there
-        s.insert(i, sample)
-        newest = s[-1].stamp
-        while s and s[0].stamp + self.cache_ns < newest:
-            s.pop(0)
+        stamps = cache.stamps
+        if stamps and parent != cache.parents[-1]:
+            cache.reparented = True
+        if not stamps or stamp > stamps[-1]:  # the usual case: newer than everything held
+            stamps.append(stamp)
+            cache.parents.append(parent)
+            cache.poses.append(pose)
+        else:
+            if stamps[-1] > stamp + self.cache_ns:
+                return "TF_OLD_DATA"
+            i = bisect_left(stamps, stamp)
+            if stamps[i] == stamp:
+                return None  # a sample at that time is already there
+            stamps.insert(i, stamp)
+            cache.parents.insert(i, parent)
+            cache.poses.insert(i, pose)
+        if stamps[0] + self.cache_ns < stamps[-1]:  # prune what fell out of the window
+            k = bisect_left(stamps, stamps[-1] - self.cache_ns)
+            del stamps[:k], cache.parents[:k], cache.poses[:k]
         return None
 
     # -- looking up ----------------------------------------------------------------------
@@ -219,38 +311,38 @@ class BufferCore:
         """For each dynamic link between the two frames: how far (ns) its nearest sample is
         from ``time``. A lookup interpolating across a long gap succeeds in tf2; this says so."""
         out = []
-        up = {f: i for i, f in enumerate(self._chain_of(source))}
-        chain_t = self._chain_of(target)
+        chain_s, chain_t = self._chain_of(source), self._chain_of(target)
+        up = set(chain_s)
         common = next((f for f in chain_t if f in up), None)
-        for chain in (self._chain_of(source), chain_t):
+        for chain in (chain_s, chain_t):
             for frame in chain:
                 if frame == common:
                     break
                 cache = self.caches.get(frame)
-                if cache is None or cache.static or not cache.samples:
+                if cache is None or cache.static or not cache.stamps:
                     continue
-                stamps = [x.stamp for x in cache.samples]
+                stamps = cache.stamps
                 i = bisect_left(stamps, time)
-                near = [abs(stamps[k] - time) for k in (i - 1, i) if 0 <= k < len(stamps)]
-                out.append((frame, min(near)))
+                out.append((frame, min(abs(stamps[k] - time) for k in (i - 1, i) if 0 <= k < len(stamps))))
         return out
 
     def _chain_of(self, frame: str) -> list[str]:
         out = [frame]
-        while frame in self.caches and self.caches[frame].samples and len(out) < MAX_DEPTH:
-            frame = self.caches[frame].samples[-1].parent
+        caches = self.caches
+        while frame in caches and caches[frame].stamps and len(out) < MAX_DEPTH:
+            frame = caches[frame].parents[-1]
             out.append(frame)
         return out
 
     def exists(self, frame: str) -> bool:
-        return frame in self.caches or any(c.samples and c.samples[-1].parent == frame for c in self.caches.values())
+        return frame in self.frames
 
     def _latest(self, frame: str) -> tuple[int, str] | None:
         """(newest stamp, parent) of a frame's cache; static caches report stamp 0."""
         cache = self.caches.get(frame)
-        if cache is None or not cache.samples:
+        if cache is None or not cache.stamps:
             return None
-        return (0 if cache.static else cache.newest(), cache.samples[-1].parent)
+        return (0 if cache.static else cache.stamps[-1], cache.parents[-1])
 
     def latest_common_time(self, target: str, source: str) -> int:
         """tf2 BufferCore::getLatestCommonTime, step for step."""
@@ -295,61 +387,92 @@ class BufferCore:
 
     def lookup(self, target: str, source: str, time: int) -> Transform:
         """Pose of ``source`` in ``target`` at ``time`` (ns; 0 = latest common time):
-        tf2 BufferCore::lookupTransform and walkToTopParent, step for step."""
+        tf2 BufferCore::lookupTransform and walkToTopParent, step for step.
+
+        The walks first only find each link's parent at that time (a range check, a
+        bisect only where a frame was re-parented), which decides success or tf2's error;
+        then only the links below the common ancestor are interpolated and composed (the
+        shared links above it cancel out)."""
         if target == source:
             cache = self.caches.get(target)
             stamp = cache.newest() if time == 0 and cache is not None and not cache.static else time
             return Transform((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), stamp)
-        self._check(target, "lookupTransform argument target_frame")
-        self._check(source, "lookupTransform argument source_frame")
-        for frame, arg in ((target, "target_frame"), (source, "source_frame")):
-            if not self.exists(frame):
-                raise TransformError("lookup", f'"{frame}" passed to lookupTransform argument {arg} does not exist. ')
+        if not target or target[0] == "/":
+            self._check(target, "lookupTransform argument target_frame")
+        if not source or source[0] == "/":
+            self._check(source, "lookupTransform argument source_frame")
+        if target not in self.frames:
+            raise TransformError(
+                "lookup", f'"{target}" passed to lookupTransform argument target_frame does not exist. '
+            )
+        if source not in self.frames:
+            raise TransformError(
+                "lookup", f'"{source}" passed to lookupTransform argument source_frame does not exist. '
+            )
         if time == 0:
             time = self.latest_common_time(target, source)
-        suffix = f", when looking up transform from frame [{source}] to frame [{target}]"
-        # up from the source to its root, accumulating source -> root
-        acc_source = np.eye(4)
+        caches = self.caches
+        # up from the source to its root
+        up: list[_Cache] = []
+        up_frames: list[str] = []
         frame, top, pending = source, source, None
         for _ in range(MAX_DEPTH):
-            cache = self.caches.get(frame)
+            cache = caches.get(frame)
             if cache is None:
                 top = frame
                 break
-            try:
-                s = cache.get(time)
-            except TransformError as exc:
-                top, pending = frame, exc
-                break
-            if frame == target:
-                return _result(acc_source, time)
-            acc_source = _matrix(s) @ acc_source
+            st = cache.stamps
+            if not cache.reparented and (cache.static or (st[0] <= time <= st[-1] and len(st) > 1)):
+                parent = cache.parents[-1]  # parent_at, inline: this is the hot loop
+            else:
+                try:
+                    parent = cache.parent_at(time)
+                except TransformError as exc:
+                    top, pending = frame, exc
+                    break
+            if frame == target:  # the target is an ancestor of the source
+                return _between(IDENTITY, _chain(up, time), time)
+            up.append(cache)
+            up_frames.append(frame)
             top = frame
-            frame = s.parent
+            frame = parent
         else:
             raise TransformError("lookup", "The tf tree is invalid because it contains a loop.")
-        # up from the target to the same top, accumulating target -> top
-        acc_target = np.eye(4)
+        # up from the target to the same top
+        down: list[_Cache] = []
+        down_frames: list[str] = []
         frame = target
         for _ in range(MAX_DEPTH):
             if frame == top:
                 break
-            cache = self.caches.get(frame)
+            cache = caches.get(frame)
             if cache is None:
                 break
-            try:
-                s = cache.get(time)
-            except TransformError as exc:
-                raise TransformError(exc.kind, f"{exc}{suffix}") from None
-            if frame == source:
-                return _result(np.linalg.inv(acc_target), time)
-            acc_target = _matrix(s) @ acc_target
-            frame = s.parent
+            st = cache.stamps
+            if not cache.reparented and (cache.static or (st[0] <= time <= st[-1] and len(st) > 1)):
+                parent = cache.parents[-1]
+            else:
+                try:
+                    parent = cache.parent_at(time)
+                except TransformError as exc:
+                    raise TransformError(exc.kind, f"{exc}{_suffix(target, source)}") from None
+            if frame == source:  # the source is an ancestor of the target
+                return _between(_chain(down, time), IDENTITY, time)
+            down.append(cache)
+            down_frames.append(frame)
+            frame = parent
         if frame != top:
             if pending is not None:
-                raise TransformError(pending.kind, f"{pending}{suffix}")
+                raise TransformError(pending.kind, f"{pending}{_suffix(target, source)}")
             raise TransformError("connectivity", _disconnected(target, source))
-        return _result(np.linalg.inv(acc_target) @ acc_source, time)
+        # both walks end with the links above the common ancestor: they cancel, skip them
+        while up_frames and down_frames and up_frames[-1] == down_frames[-1]:
+            up_frames.pop(), down_frames.pop(), up.pop(), down.pop()
+        return _between(_chain(down, time), _chain(up, time), time)
+
+
+def _suffix(target: str, source: str) -> str:
+    return f", when looking up transform from frame [{source}] to frame [{target}]"
 
 
 def _disconnected(target: str, source: str) -> str:
@@ -357,15 +480,3 @@ def _disconnected(target: str, source: str) -> str:
         f"Could not find a connection between '{target}' and '{source}' because they are not part of the same "
         "tree.Tf has two or more unconnected trees."
     )
-
-
-def _matrix(s: Sample) -> np.ndarray:
-    m = np.eye(4)
-    m[:3, :3] = quat_matrix(s.rotation)
-    m[:3, 3] = s.translation
-    return m
-
-
-def _result(m: np.ndarray, time: int) -> Transform:
-    t = (float(m[0, 3]), float(m[1, 3]), float(m[2, 3]))
-    return Transform(t, quat_from_matrix(m[:3, :3]), time)

@@ -14,9 +14,11 @@ Faults (each applied inside a time window so a test can check the right messages
 
 from __future__ import annotations
 
+import heapq
 import math
 import shutil
 import tempfile
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -154,27 +156,35 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
     counts: dict[str, int] = {}
     start = 1_700_000_000 * NS  # a fixed epoch: recordings are reproducible
-    events: list[tuple[int, str, Any, str]] = []
     fixed = [j for j in robot.joints if j.type == "fixed" and j.parent and j.child]
     movable = [j for j in robot.joints if j.type in ONE_DOF and j.parent and j.child]
-    events.append(
-        (
-            start + 1_000_000,
-            "/tf_static",
-            tf_message_(transforms=[tf(j.parent or "", j.child or "", start, joint_transform(j)) for j in fixed]),
-            "tf2_msgs/msg/TFMessage",
-        )
-    )
     period = int(NS / p.rate_hz)
     steps = int(duration * p.rate_hz)
-    for k in range(steps):
+
+    # Events are made lazily and merged by (log time, order of making): the same order a
+    # stable sort of them all would give, without holding a long recording in memory.
+    def static_events() -> Iterator[Event]:
+        msg = tf_message_(transforms=[tf(j.parent or "", j.child or "", start, joint_transform(j)) for j in fixed])
+        yield (start + 1_000_000, 0, "/tf_static", msg, "tf2_msgs/msg/TFMessage")
+
+    def controller_events() -> Iterator[Event]:
+        pending: list[Event] = []  # at rates above 1 kHz a step's /tf is logged after the next /joint_states
+        for k in range(steps):
+            yield from _ready(pending, start + k * period + 1_000_000)
+            for e in controller_step(k):
+                heapq.heappush(pending, e)
+        yield from _ready(pending, None)
+
+    def controller_step(k: int) -> list[Event]:
+        out: list[Event] = []
         ns = start + k * period
         t = k / p.rate_hz
         q = joint_values(robot, t)
         names = [j.name for j in movable]
-        events.append(
+        out.append(
             (
                 ns + 1_000_000,
+                1 + 2 * k,
                 "/joint_states",
                 joint_state_(
                     header=header_(stamp=stamp(ns), frame_id=""),
@@ -194,8 +204,12 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
             c, s = math.cos(0.2 * t), math.sin(0.2 * t)
             m[:2, :2] = ((c, -s), (s, c))
             transforms.append(tf(p.odom[0], p.odom[1], ns, m))
-        events.append((ns + 2_000_000, "/tf", tf_message_(transforms=transforms), "tf2_msgs/msg/TFMessage"))
-    if p.camera_frame is not None:
+        out.append((ns + 2_000_000, 2 + 2 * k, "/tf", tf_message_(transforms=transforms), "tf2_msgs/msg/TFMessage"))
+        return out
+
+    def camera_events() -> Iterator[Event]:
+        if p.camera_frame is None:
+            return
         cam_period = NS // 30
         for k in range(int(duration * 30)):
             ns = start + k * cam_period + 5_000_000  # exposure time; arrives 20 ms later
@@ -218,15 +232,34 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
                 binning_y=0,
                 roi=roi_(x_offset=0, y_offset=0, height=0, width=0, do_rectify=False),
             )
-            events.append((ns + 20_000_000, "/camera/camera_info", info, "sensor_msgs/msg/CameraInfo"))
-    events.sort(key=lambda e: e[0])
+            yield (ns + 20_000_000, 1 + 2 * steps + k, "/camera/camera_info", info, "sensor_msgs/msg/CameraInfo")
+
+    def events() -> Iterator[Event]:
+        return heapq.merge(static_events(), controller_events(), camera_events())
+
+    # connections in the order of each topic's first message: the first few events say it
+    topics = {"/tf_static"} | ({"/joint_states", "/tf"} if steps else set())
+    topics |= {"/camera/camera_info"} if p.camera_frame is not None and int(duration * 30) else set()
+    first: dict[str, str] = {}
+    for _, _, topic, _, msgtype in events():
+        first.setdefault(topic, msgtype)
+        if len(first) == len(topics):
+            break
     with Writer(out, version=9, storage_plugin=plugin) as w:
         conns = {}
-        for _, topic, _, msgtype in events:
-            if topic not in conns:
-                qos = (latched,) if topic == "/tf_static" else ()
-                conns[topic] = w.add_connection(topic, msgtype, typestore=ts, offered_qos_profiles=qos)
-        for log_ns, topic, msg, msgtype in events:
+        for topic, msgtype in first.items():
+            qos = (latched,) if topic == "/tf_static" else ()
+            conns[topic] = w.add_connection(topic, msgtype, typestore=ts, offered_qos_profiles=qos)
+        for log_ns, _, topic, msg, msgtype in events():
             w.write(conns[topic], log_ns, ts.serialize_cdr(msg, msgtype))
             counts[topic] = counts.get(topic, 0) + 1
     return counts
+
+
+Event = tuple[int, int, str, Any, str]  # log ns, order of making, topic, message, type
+
+
+def _ready(pending: list[Event], before: int | None) -> Iterator[Event]:
+    """Pop the heap's events logged before ``before`` (None: all), oldest first."""
+    while pending and (before is None or pending[0][0] < before):
+        yield heapq.heappop(pending)

@@ -1,0 +1,413 @@
+"""``descgen report``: one page, ``evidence/README.md``, that links and summarises every proof.
+
+The page is a pure function of the spec, the package on disk and the committed control
+evidence, so ``descgen check`` rebuilds it in memory and compares it like a generated file.
+What may differ between machines without the robot changing (MuJoCo's drift digits and wall
+time, whether MuJoCo is installed) sits between ``<!-- volatile -->`` markers and is left out
+of that comparison.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import tempfile
+from collections.abc import Callable, Sequence
+from contextlib import redirect_stderr, redirect_stdout
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from . import cli_format, report
+from .findings import Finding, InputError, Where
+
+PAGE = "evidence/README.md"
+_VOLATILE = re.compile(r"<!-- volatile -->.*?<!-- /volatile -->", re.S)
+TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
+
+
+@dataclass(frozen=True)
+class FieldFault:
+    """A field-story mistake planted in a copy of the spec text, and the code that must catch it."""
+
+    name: str
+    story: str
+    expected: str
+    plant: Callable[[str], str]
+
+
+def _camera_metres(text: str) -> str:
+    """The wrist camera 25 m away: its 25 mm offset typed as metres."""
+    return _replace_in(text, "name: camera", "xyz: [25 mm,", "xyz: [25 m,")
+
+
+def _elbow_axis(text: str) -> str:
+    """The elbow turning about z instead of y."""
+    return _replace_in(text, "name: elbow_joint", "axis: +y", "axis: +z")
+
+
+def _display_desired(text: str) -> str:
+    """An operator display relay publishing the commanded positions on /joint_states."""
+    extra = "  joint_state_sources:\n    - {node: operator_display_relay, kind: desired, source: field story}\n"
+    if re.search(r"^frames:\s*$", text, re.M):
+        return re.sub(r"^frames:\s*\n", lambda m: m.group(0) + extra, text, count=1, flags=re.M)
+    return text.rstrip("\n") + "\n\nframes:\n" + extra
+
+
+def _replace_in(text: str, anchor: str, old: str, new: str) -> str:
+    """``old`` -> ``new`` at its first occurrence after ``anchor`` (unchanged text: not plantable)."""
+    start = text.find(anchor)
+    at = text.find(old, start) if start >= 0 else -1
+    return text if at < 0 else text[:at] + new + text[at + len(old) :]
+
+
+FIELD_FAULTS = (
+    FieldFault(
+        "camera-25m", "the wrist camera 25 m away (a millimetre value typed as metres)", "UNIT004", _camera_metres
+    ),
+    FieldFault("elbow-axis", "the elbow turning about the wrong axis (+z for +y)", "POSE010", _elbow_axis),
+    FieldFault(
+        "display-desired",
+        "an operator display fed by desired commands instead of measured state",
+        "FRAME005",
+        _display_desired,
+    ),
+)
+
+
+@dataclass(frozen=True)
+class Caught:
+    fault: FieldFault
+    planted: bool
+    by: Finding | None
+
+
+def field_faults(spec_text: str, shown: str) -> list[Caught]:
+    """Plant each field-story fault in a copy of the spec text and validate it as ``validate``
+    and ``poses`` would; the fault is caught by the first error of its expected code."""
+    from .poses import findings as pose_findings
+    from .spec.load import load_spec_text
+
+    out = []
+    for fault in FIELD_FAULTS:
+        text = fault.plant(spec_text)
+        if text == spec_text:
+            out.append(Caught(fault, False, None))
+            continue
+        try:
+            loaded = load_spec_text(text, shown)
+            found = [*loaded.findings, *pose_findings(loaded.robot)]
+        except InputError as exc:
+            found = list(exc.findings)
+        by = next((f for f in found if f.code == fault.expected and f.severity == "error"), None)
+        out.append(Caught(fault, True, by))
+    return out
+
+
+def _capture(fn: Callable[[], Any]) -> tuple[str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with redirect_stdout(out), redirect_stderr(err):
+        fn()
+    return out.getvalue(), err.getvalue()
+
+
+def _block(text: str, lang: str = "") -> list[str]:
+    return [f"```{lang}", *text.rstrip("\n").splitlines(), "```", ""]
+
+
+def _exists(package: Path, rel: str) -> bool:
+    return (package / rel).is_file()
+
+
+def _link(package: Path, rel: str, label: str | None = None) -> str:
+    """A link relative to evidence/README.md; a missing file is said so, never linked blindly."""
+    target = rel[len("evidence/") :] if rel.startswith("evidence/") else f"../{rel}"
+    shown = label or rel
+    return f"[{shown}]({target})" if _exists(package, rel) else f"{shown} (missing)"
+
+
+def _verdict(ok: bool, text: str) -> str:
+    return f"**Verdict: {'PASS' if ok else 'FAIL'}**: {text}"
+
+
+# -- the sections ---------------------------------------------------------------------------
+
+
+def _model(files: dict[str, str], robot: Any, package: Path) -> list[str]:
+    from .checks import CHECKS
+
+    urdf = next((rel for rel in files if rel.startswith("urdf/") and rel.endswith(".urdf")), "")
+    xacro = next((rel for rel in files if rel.endswith(".urdf.xacro")), "")
+    moving = [j for j in robot.joints if j.type != "fixed"]
+    lines = [
+        "## 1. Expanded model",
+        "",
+        f"{_link(package, urdf)} (expanded from {_link(package, xacro)}): {len(robot.links)} links, "
+        f"{len(robot.joints)} joints ({len(moving)} moving).",
+        "",
+        "| proof | result |",
+        "|---|---|",
+    ]
+    ok = True
+    for name, check in CHECKS:
+        found = check(files, robot, package)
+        bad = sorted({f.code for f in found if f.severity in ("error", "warning")})
+        notes = sorted({f.code for f in found if f.severity == "info"})
+        ok = ok and not bad
+        result = "failed: " + ", ".join(bad) if bad else "passed" + (f" (notes: {', '.join(notes)})" if notes else "")
+        lines.append(f"| {name} | {result} |")
+    lines += ["", _verdict(ok, "every round trip (xacro, yourdfpy, check_urdf, SRDF, ros2_control) agrees"), ""]
+    return lines
+
+
+def _validation(spec: Path, shown: str) -> tuple[list[str], Any]:
+    from .spec import load_spec
+
+    loaded = load_spec(spec, display=shown)
+    text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
+    ok = not any(f.severity == "error" for f in loaded.findings)
+    lines = ["## 2. Validation", "", f"`descgen validate {shown}` prints:", "", *_block(text, "text")]
+    lines += [_verdict(ok, "the spec is valid"), ""]
+    return lines, loaded.robot
+
+
+def _poses(robot: Any, package: Path) -> list[str]:
+    from .poses import evaluate, findings
+
+    rows = evaluate(robot)
+    bad = [f for f in findings(robot, rows) if f.severity == "error"]
+    lines = ["## 3. Known poses", "", f"Table: {_link(package, 'evidence/known_poses.md')}.", ""]
+    lines += _block(cli_format.poses_table(rows), "text")
+    lines += [_verdict(not bad, f"{len(rows)} measured frame positions within tolerance of forward kinematics"), ""]
+    return lines
+
+
+def _frames(package: Path, files: dict[str, str]) -> list[str]:
+    md = files.get("evidence/frames.md", "")
+    m = re.search(r"```mermaid\n.*?```\n", md, re.S)
+    lines = ["## 4. Frame ownership", "", f"Every edge and its publisher: {_link(package, 'evidence/frames.md')}.", ""]
+    if m:
+        lines += [m.group(0).rstrip("\n"), ""]
+    lines += [_verdict(m is not None, "one owner per frame (FRAME rules pass in validation)"), ""]
+    return lines
+
+
+def _timestamps(robot: Any) -> list[str]:
+    from .tf.bagaudit import audit
+    from .tf.scenario import FAULTS, WINDOWS, write
+
+    with tempfile.TemporaryDirectory(prefix="descgen-report-") as tmp:
+        bag = Path(tmp) / "scenario"
+        write(robot, bag, FAULTS, 10.0, "mcap")
+        rep = audit(bag, TARGET_FRAME, (), 0, None)
+        text = cli_format.tf_audit_text(rep, TARGET_FRAME)
+    c = rep.counts
+    failed = {k for k in ("disconnected", "stale", "future") if c[k]}
+    planted = ", ".join(f"`{f}` in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items())
+    lines = [
+        "## 5. Timestamp failures",
+        "",
+        f"`descgen tf-scenario SPEC --out BAG --fault camera-future --fault odom-gap --fault unknown-frame` "
+        f"(10 s; planted: {planted}), then `descgen tf-audit BAG --target {TARGET_FRAME}` "
+        "(the recording is not committed; this is its audit):",
+        "",
+        *_block(text, "text"),
+        _verdict(
+            failed == {"disconnected", "stale", "future"},
+            "each planted fault shows as its own failure class (disconnected, stale, future-dated)",
+        ),
+        "",
+    ]
+    return lines
+
+
+def _control(package: Path) -> tuple[list[str], list[str]]:
+    ev = package / "evidence"
+    try:
+        verdict = json.loads((ev / "verdict.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        verdict = {}
+    traces = [
+        "## 6. Interface and lifecycle traces",
+        "",
+        f"{_link(package, 'evidence/lifecycle.md')} (and {_link(package, 'evidence/lifecycle.jsonl')}), "
+        f"{_link(package, 'evidence/interfaces.md')}.",
+        "",
+    ]
+    active = not verdict.get("controllers_not_active", ["?"])
+    traces += [_verdict(bool(verdict) and active, "every controller reached active; no claim was refused"), ""]
+    plots = sorted(p.name for p in ev.glob("*.png")) if ev.is_dir() else []
+    run = verdict.get("run", {})
+    dvm = [
+        "## 7. Desired versus measured",
+        "",
+        f"{_link(package, 'evidence/desired_vs_measured.csv')} and {_link(package, 'evidence/verdict.json')}, "
+        f"from `descgen control SPEC --trajectory {run.get('trajectory', '?')}` "
+        f"(plant {run.get('plant', {}).get('kind', '?')}).",
+        "",
+    ]
+    dvm += [f"![{p}]({p})" for p in plots] + [""]
+    echo = verdict.get("state_echoes_command")
+    dvm += [
+        _verdict(bool(verdict.get("ok")), f"tracking within tolerance; `state_echoes_command: {str(echo).lower()}`"),
+        "",
+    ]
+    if echo:
+        dvm += [f"> {verdict.get('note', '')}", ""]
+    return traces, dvm
+
+
+def _transcript(spec: Path, shown: str, check_out: tuple[str, str], unchanged: int, simulate: bool) -> list[str]:
+    from .cli import main
+
+    v_out, v_err = _capture(lambda: main(["validate", str(spec)]))
+    steps = [
+        (f"descgen validate {shown}", (v_err + v_out).replace(str(spec), shown)),
+        (f"descgen generate {shown}", f"{shown}: wrote 0 files, {unchanged} unchanged\n"),
+        (f"descgen check {shown}", check_out[1] + check_out[0]),
+    ]
+    lines = [
+        "## 8. Starter output",
+        "",
+        "What `make demo` prints on a fresh clone after installing (the package is committed and up to date, "
+        "so generate rewrites nothing):",
+        "",
+        "```text",
+    ]
+    for cmd, out in steps:
+        lines += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
+    # MuJoCo's digits and its presence vary by machine: check leaves this part out (and skips the run)
+    lines += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
+    lines += [f"$ descgen report {shown}", f"wrote {PAGE}", "```", ""]
+    lines += [_verdict("every check passed" in check_out[0], "validate, generate and check succeed"), ""]
+    return lines
+
+
+def _simulate(spec: Path, shown: str) -> list[str]:
+    from .simulate import Settings, simulate_description
+
+    lines = [f"$ descgen simulate {shown} --pose ready"]
+    try:
+        from .audit.inputs import Options
+
+        outcome = simulate_description(spec, Options(None, None, {}, (), False), Settings(pose="ready"))
+    except InputError as exc:
+        return lines + report.text(exc.findings).replace(str(spec), shown).splitlines()
+    text = cli_format.simulate_text(shown, outcome.report)
+    text = re.sub(r" in [0-9.]+ s wall", "", text)
+    return lines + text.splitlines()
+
+
+def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
+    from .faults import plant_all
+
+    caught = field_faults(spec.read_text(encoding="utf-8"), shown)
+    lines = [
+        "## 9. Three-fault audit",
+        "",
+        "The field story's three faults, each planted in a copy of the spec and validated:",
+        "",
+        "| fault | planted | caught by |",
+        "|---|---|---|",
+    ]
+    for c in caught:
+        by = f"{c.by.code}: {report.printable(c.by.message)}".replace("|", "\\|") if c.by else "**MISSED**"
+        lines.append(f"| {c.fault.story} | {'yes' if c.planted else 'not plantable'} | {by} |")
+    results = plant_all(robot)
+    applicable = [r for r in results if r.applicable]
+    lines += ["", "`descgen faults SPEC`, the whole catalogue:", "", *_block(cli_format.faults_text(results), "text")]
+    all_caught = all(c.by is not None for c in caught) and all(r.caught for r in applicable)
+    lines += [_verdict(all_caught, "every planted fault was caught by its expected finding"), ""]
+    return lines
+
+
+# -- the page -------------------------------------------------------------------------------
+
+
+def build(
+    spec: Path,
+    shown: str,
+    files: dict[str, str],
+    robot: Any,
+    package: Path,
+    check_out: tuple[str, str],
+    n: int,
+    simulate: bool = True,
+) -> str:
+    """The whole page. ``check_out`` is (stdout, stderr) of ``descgen check`` for the transcript,
+    ``n`` the number of files generate writes."""
+    validation, _ = _validation(spec, shown)
+    traces, dvm = _control(package)
+    parts = [
+        f"# Evidence for {robot.name}",
+        "",
+        f"Written by `descgen report {shown}`; `descgen check` verifies it is current. "
+        "Each section links the committed files it summarises and ends with a verdict.",
+        "",
+        *_model(files, robot, package),
+        *validation,
+        *_poses(robot, package),
+        *_frames(package, files),
+        *_timestamps(robot),
+        *traces,
+        *dvm,
+        *_transcript(spec, shown, check_out, n, simulate),
+        *_field_story(spec, shown, robot),
+    ]
+    return _relative("\n".join(parts).rstrip("\n") + "\n", package)
+
+
+def _relative(page: str, package: Path) -> str:
+    """Paths as the project sees them (``specs/...``, ``generated/...``): findings name files by
+    the path they were read from, and the page must read the same on any machine."""
+    for folder in {package.resolve().parent.parent, package.parent.parent}:
+        page = page.replace(f"{folder}/", "")
+    return page
+
+
+def comparable(page: str) -> str:
+    """The page without its volatile parts (what check compares)."""
+    return _VOLATILE.sub("<!-- volatile -->", page)
+
+
+def stale(package: Path, fresh: str) -> list[Finding]:
+    """GEN080 when the committed page is missing or differs from ``fresh`` (volatile parts aside)."""
+    target = package / PAGE
+    where = Where(str(target))
+    if not target.is_file():
+        return []  # no report written yet: nothing to keep current (generate does not write it)
+    now = target.read_text(encoding="utf-8", errors="replace")
+    if comparable(now) == comparable(fresh):
+        return []
+    return [
+        Finding(
+            "GEN080",
+            "error",
+            f"{PAGE} is stale: the proofs it summarises changed",
+            "run descgen report SPEC and commit the result",
+            f"file:{PAGE}",
+            where,
+        )
+    ]
+
+
+def failed_verdicts(page: str) -> list[str]:
+    return [line for line in page.splitlines() if line.startswith("**Verdict: FAIL**")]
+
+
+def write(package: Path, page: str) -> Path:
+    """The page, replaced in one rename so a reader never sees half of it."""
+    target = package / PAGE
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_name(f".{target.name}.tmp")
+    tmp.write_text(page, encoding="utf-8")
+    tmp.replace(target)
+    return target
+
+
+def check_lines(spec_shown: str, findings: Sequence[Finding], diff: str) -> tuple[str, str]:
+    """(stdout, stderr) that ``descgen check`` prints for this outcome, as in cli._cmd_check."""
+    failed = any(f.severity == "error" for f in findings)
+    out = diff + ("" if failed else f"{spec_shown}: generated files are up to date and every check passed\n")
+    return out, report.text(findings)
