@@ -131,10 +131,15 @@ def compute(
     with_geometry, without = geometry_links(robot)
     checked = len(with_geometry) * (len(with_geometry) - 1) // 2
     state_name = _state_values(robot, settings)[0]
-    pairs = cached(robot, committed_srdf, key)
+    pairs = cached(robot, committed_srdf, key) or _SAMPLED.get(key)
     if pairs is None:
-        pairs = _sample(robot, urdf, meshes, package, settings)
+        pairs = _SAMPLED[key] = _sample(robot, urdf, meshes, package, settings)
     return CollisionMatrix(settings, key, pairs, tuple(without), checked, state_name)
+
+
+# matrices sampled in this process, by input hash: generate followed by check (or a test that
+# plans the same robot twice) samples once; a few entries of pair names, so no bound is needed
+_SAMPLED: dict[str, tuple[DisabledPair, ...]] = {}
 
 
 # --- sampling with pinocchio ---------------------------------------------------------------------

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import cli_format, report
+from . import cli_format, pose_images, report
 from .findings import Finding, InputError, Where
 
 PAGE = "evidence/README.md"
@@ -179,6 +179,8 @@ def _poses(robot: Any, package: Path) -> list[str]:
     bad = [f for f in findings(robot, rows) if f.severity == "error"]
     lines = ["## 3. Known poses", "", f"Table: {_link(package, 'evidence/known_poses.md')}.", ""]
     lines += _block(cli_format.poses_table(rows), "text")
+    # one picture per pose (model dots, measured crosses); check compares their inputs, not PNG bytes
+    lines += [*pose_images.embeds(robot), ""] if robot.known_poses else []
     lines += [_verdict(not bad, f"{len(rows)} measured frame positions within tolerance of forward kinematics"), ""]
     return lines
 
@@ -258,7 +260,9 @@ def _control(package: Path) -> tuple[list[str], list[str]]:
     return traces, dvm
 
 
-def _transcript(spec: Path, shown: str, check_out: tuple[str, str], unchanged: int, simulate: bool) -> list[str]:
+def _transcript(
+    spec: Path, shown: str, check_out: tuple[str, str], unchanged: int, simulate: bool, robot: Any
+) -> list[str]:
     from .cli import main
 
     v_out, v_err = _capture(lambda: main(["validate", str(spec)]))
@@ -279,7 +283,9 @@ def _transcript(spec: Path, shown: str, check_out: tuple[str, str], unchanged: i
         lines += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
     # MuJoCo's digits and its presence vary by machine: check leaves this part out (and skips the run)
     lines += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
-    lines += [f"$ descgen report {shown}", f"wrote {PAGE}", "```", ""]
+    images = [*(pose_images.image_rel(kp.name) for kp in robot.known_poses), pose_images.SIDECAR]
+    wrote = [f"wrote {rel}" for rel in images]
+    lines += [f"$ descgen report {shown}", *wrote, f"wrote {PAGE}", "```", ""]
     lines += [_verdict("every check passed" in check_out[0], "validate, generate and check succeed"), ""]
     return lines
 
@@ -352,7 +358,7 @@ def build(
         *_timestamps(robot),
         *traces,
         *dvm,
-        *_transcript(spec, shown, check_out, n, simulate),
+        *_transcript(spec, shown, check_out, n, simulate, robot),
         *_field_story(spec, shown, robot),
     ]
     return _relative("\n".join(parts).rstrip("\n") + "\n", package)

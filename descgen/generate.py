@@ -679,6 +679,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page
     """The evidence page rebuilt from the proofs just run: compared (GEN080), or written when
     asked and every proof passed (else GEN081: a page must not show a failed package as current)."""
     from . import evidence_page as page
+    from . import pose_images
 
     if not write_page and not (p.package_dir / page.PAGE).is_file():
         return []
@@ -686,7 +687,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page
     lines = page.check_lines(shown, outcome.findings, outcome.diff)
     fresh = page.build(spec, shown, p.files, p.robot, p.package_dir, lines, len(p.content()), simulate=write_page)
     if not write_page:
-        return page.stale(p.package_dir, fresh)
+        return page.stale(p.package_dir, fresh) + pose_images.stale(p.package_dir, p.robot)
     bad = page.failed_verdicts(fresh)
     if outcome.failed or bad:
         why = bad[0] if bad else "the package is stale or a check failed"
@@ -700,6 +701,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page
                 Where(str(p.package_dir / page.PAGE)),
             )
         ]
+    outcome.written += pose_images.write(p.package_dir, p.robot)  # before the page that embeds them
     outcome.written.append(page.PAGE)
     page.write(p.package_dir, fresh)
     return []

@@ -116,7 +116,10 @@ def browser_view() -> Iterator[tuple[object, object]]:
         "--disable-background-networking", "--disable-component-update", "--no-first-run",
         f"--user-data-dir={profile.name}", "--window-size=800,600",
     ]  # fmt: skip
-    proc = subprocess.Popen([chromium, *flags, view.url], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # its own session, so that teardown can end the GPU and renderer children too, not only the browser
+    proc = subprocess.Popen(
+        [chromium, *flags, view.url], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+    )
     try:
         deadline = time.monotonic() + 30
         while not view.server.get_clients() and time.monotonic() < deadline:
@@ -128,8 +131,12 @@ def browser_view() -> Iterator[tuple[object, object]]:
         client.camera.look_at = (0.0, 0.0, 0.5)
         yield view, client
     finally:
-        proc.terminate()
-        proc.wait(timeout=10)
+        os.killpg(proc.pid, signal.SIGTERM)
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(timeout=10)
         view.close()
         profile.cleanup()
 
