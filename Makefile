@@ -17,7 +17,7 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 demo: setup
-	$(PY) -m pip install --quiet -e '.[sim,view]'
+	$(PY) -m pip install --quiet -e '.[sim,view,collision]'
 	$(BIN)/descgen validate $(SPEC)
 	$(BIN)/descgen generate $(SPEC)
 	$(BIN)/descgen check $(SPEC)
