@@ -54,3 +54,14 @@ if __name__ == "__main__":
     # prints the counts columns of docs/audit-corpus.md
     for ident, found in audit_all().items():
         print(f"| `{ident}` | {counts(found, 'error')} | {counts(found, 'warning')} |")
+
+
+# corpus robots the planted-fault tests use: legged, humanoid, mobile manipulators, some with prismatic joints
+FAULT_ROBOTS = [
+    "talos_data/robots/talos_reduced.urdf",
+    "solo_description/robots/solo12.urdf",
+    "go2_description/urdf/go2.urdf",
+    "anymal_c_simple_description/urdf/anymal.urdf",
+    "pr2_description/urdf/pr2.urdf",
+    "tiago_description/robots/tiago.urdf",
+]

@@ -101,3 +101,19 @@ def cli(*args: str | Path, cwd: Path = ROOT, timeout: float = 300) -> Ran:
         except SystemExit as exc:  # argparse: --help (0) and usage errors (2)
             code = exc.code if isinstance(exc.code, int) else 1 if exc.code else 0
     return Ran(code, out.getvalue(), err.getvalue())
+
+
+# semantic_components/imu_sensor.hpp (jazzy): the ten interfaces an IMUSensorBroadcaster reads,
+# written out here by hand as the oracle for descgen/control/claims.py
+JAZZY_IMU_INTERFACES = [
+    "orientation.x",
+    "orientation.y",
+    "orientation.z",
+    "orientation.w",
+    "angular_velocity.x",
+    "angular_velocity.y",
+    "angular_velocity.z",
+    "linear_acceleration.x",
+    "linear_acceleration.y",
+    "linear_acceleration.z",
+]

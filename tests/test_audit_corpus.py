@@ -13,7 +13,7 @@ from descgen.faults import plant_all
 from descgen.findings import Finding
 
 from .conftest import ROOT
-from .corpus import counts, descriptions, share
+from .corpus import FAULT_ROBOTS, counts, descriptions, share
 from .helpers import cli
 
 CORPUS = descriptions()
@@ -61,16 +61,6 @@ def test_every_table_row_has_a_reason() -> None:
             if cells[1] != "—" or cells[2] != "—":
                 for code in re.findall(r"([A-Z]+\d{3})×", cells[1] + " " + cells[2]):
                     assert code in cells[3], f"{cells[0]}: {code} is not explained"
-
-
-FAULT_ROBOTS = [
-    "talos_data/robots/talos_reduced.urdf",
-    "solo_description/robots/solo12.urdf",
-    "go2_description/urdf/go2.urdf",
-    "anymal_c_simple_description/urdf/anymal.urdf",
-    "pr2_description/urdf/pr2.urdf",
-    "tiago_description/robots/tiago.urdf",
-]
 
 
 @pytest.mark.parametrize("ident", FAULT_ROBOTS)

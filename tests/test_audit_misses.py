@@ -18,7 +18,7 @@ from descgen.findings import Finding
 from descgen.model import Robot
 from descgen.readers.urdf import read_urdf_text
 
-from .corpus import descriptions, share
+from .corpus import FAULT_ROBOTS, descriptions, share
 
 
 def robot_of(body: str) -> Robot:
@@ -254,14 +254,6 @@ def test_the_example_catches_both_new_faults_on_their_elements() -> None:
 
 
 CORPUS = {ident: (urdf, srdf) for ident, urdf, srdf in descriptions()}
-FAULT_ROBOTS = [
-    "talos_data/robots/talos_reduced.urdf",
-    "solo_description/robots/solo12.urdf",
-    "go2_description/urdf/go2.urdf",
-    "anymal_c_simple_description/urdf/anymal.urdf",
-    "pr2_description/urdf/pr2.urdf",
-    "tiago_description/robots/tiago.urdf",
-]
 
 
 @pytest.mark.parametrize("ident", FAULT_ROBOTS)

@@ -16,7 +16,7 @@ from descgen.findings import InputError
 from descgen.readers.xacro_file import expand
 from descgen.render import render_package
 from descgen.spec.load import load_spec
-from tests.helpers import EXAMPLE_TEXT, ROOT, cli, errors_of, line_of, plant
+from tests.helpers import EXAMPLE_TEXT, JAZZY_IMU_INTERFACES, ROOT, cli, errors_of, line_of, plant
 
 PKG = ROOT / "generated" / "warehouse_arm_description"
 XACRO = PKG / "urdf" / "warehouse_arm.urdf.xacro"
@@ -125,18 +125,7 @@ def test_a_wrong_variant_plugin_is_an_input_error(tmp_path: Path, old: str, new:
 
 
 GRIPPER_TEXT = (GRIPPER / "robot.yaml").read_text()
-IMU = [
-    "orientation.x",
-    "orientation.y",
-    "orientation.z",
-    "orientation.w",
-    "angular_velocity.x",
-    "angular_velocity.y",
-    "angular_velocity.z",
-    "linear_acceleration.x",
-    "linear_acceleration.y",
-    "linear_acceleration.z",
-]
+IMU = JAZZY_IMU_INTERFACES
 
 
 def test_gripper_imu_spec_generates_sensor_gpio_and_runs_the_gripper(tmp_path: Path) -> None:

@@ -20,7 +20,7 @@ from descgen.findings import Finding, InputError
 from descgen.readers.controllers import read_controllers_text
 from descgen.readers.urdf import read_urdf_text
 
-from .helpers import ROOT, errors_of, plant
+from .helpers import JAZZY_IMU_INTERFACES, ROOT, errors_of, plant
 
 # A two-finger gripper: the left finger mimics the right one, q_left = -1 * q_right + 0.01
 # (multiplier != 1, offset != 0), the arm joint is an ordinary revolute joint.
@@ -41,19 +41,7 @@ LEFT_OK = """<joint name="finger_left_joint"><state_interface name="position"/>
   <state_interface name="velocity"/></joint>"""
 ARM = """<joint name="arm_joint"><command_interface name="position"/>
   <state_interface name="position"/><state_interface name="velocity"/></joint>"""
-# semantic_components/imu_sensor.hpp (jazzy): the ten interfaces an IMUSensorBroadcaster reads
-IMU_NAMES = [
-    "orientation.x",
-    "orientation.y",
-    "orientation.z",
-    "orientation.w",
-    "angular_velocity.x",
-    "angular_velocity.y",
-    "angular_velocity.z",
-    "linear_acceleration.x",
-    "linear_acceleration.y",
-    "linear_acceleration.z",
-]
+IMU_NAMES = JAZZY_IMU_INTERFACES
 IMU = '<sensor name="imu">' + "".join(f'<state_interface name="{i}"/>' for i in IMU_NAMES) + "</sensor>"
 
 
