@@ -25,8 +25,8 @@ demo: setup
 	$(BIN)/descgen report $(SPEC)
 
 lint: setup
-	$(BIN)/ruff check descgen tests benchmarks
-	$(BIN)/ruff format --check descgen tests benchmarks
+	$(BIN)/ruff check descgen tests benchmarks scripts
+	$(BIN)/ruff format --check descgen tests benchmarks scripts
 	$(BIN)/mypy descgen
 
 # every test, slow and end-to-end ones included, on every core (pytest-xdist); tests write
@@ -34,8 +34,14 @@ lint: setup
 test: lint
 	$(BIN)/pytest -q -n auto
 
+# every benchmark beside its anchor, then one table (benchmarks/summary.py) for the README;
+# about 10 minutes on 2 cores (bench_tf audits a 10-minute recording here; --minutes 30 by hand)
 bench: setup
-	@for b in benchmarks/*.py; do echo "== $$b"; $(PY) $$b; done
+	@mkdir -p build && rm -f build/bench-rows.jsonl
+	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
+		if [ $$b = benchmarks/bench_tf.py ]; then args="--minutes 10"; else args=""; fi; \
+		BENCH_ROWS=build/bench-rows.jsonl $(PY) $$b $$args || echo "!! $$b failed"; done
+	@$(PY) benchmarks/summary.py build/bench-rows.jsonl
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .mypy_cache .ruff_cache

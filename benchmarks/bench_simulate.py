@@ -13,8 +13,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import mujoco  # noqa: E402
+from rows import row  # noqa: E402
 
 from descgen.simulate import DEFAULT_SECONDS, Settings, simulate  # noqa: E402
 from descgen.simulate.faults import plant_all  # noqa: E402
@@ -47,6 +49,7 @@ def main() -> None:
         assert not out.failed, out.findings
     print(f"plain MuJoCo, compile + {DEFAULT_SECONDS:g} s of steps (anchor): {t_anchor * 1000:8.1f} ms")
     print(f"descgen simulate, example at 'ready' on the floor, best of {REPEATS}: {min(times) * 1000:8.1f} ms")
+    row(f"simulate the example at 'ready', best of {REPEATS} (anchor: plain MuJoCo)", min(times), t_anchor, "warm")
     t0 = time.perf_counter()
     results = plant_all(robot, Settings(pose="ready"), SPEC)
     t_faults = time.perf_counter() - t0

@@ -8,7 +8,8 @@
    bytes + deserialize of every message), and peak memory (tracemalloc peak of the audit
    call, and the process's max RSS), each in a fresh process.
 
-Run: .venv/bin/python benchmarks/bench_tf.py [--minutes 30]   (or `make bench`)
+Run: .venv/bin/python benchmarks/bench_tf.py [--minutes 30]   (`make bench` passes --minutes 10: the
+30-minute recording takes several minutes to write and to audit four times on 2 cores)
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 ROUNDS = 5
 
 TF2_TIMER = r"""
@@ -115,7 +117,11 @@ def buffer_rates() -> None:
     if theirs:
         ratio = statistics.median(ours) / statistics.median(theirs)
         print(f"  tf2 BufferCore (C++, anchor): {statistics.median(theirs):9.0f} lookups/s   ours/tf2 {ratio:.2f}x")
-    else:
+    from rows import row
+
+    anchor = statistics.median(theirs) if theirs else None
+    row("tf buffer lookups, 10-frame chain", statistics.median(ours), anchor, "warm", "lookups/s", "tf2 C++")
+    if not theirs:
         print("  tf2 BufferCore: python3-tf2 not available")
 
 
@@ -156,6 +162,11 @@ def audit_figures(minutes: float) -> None:
             f"tracemalloc peak {peak / 1e6:.1f} MB; {audit / read:.1f}x the bytes-only read, "
             f"{audit / deser:.2f}x read + deserialize"
         )
+    from rows import row
+
+    for length, _, _, _, _, _, deser, audit, *_ in rows:
+        measure_ = f"tf-audit of a {length:g}-minute recording (fresh processes)"
+        row(measure_, audit, deser, "cold", anchor_name="rosbags read+deserialize")
     (_, *_, peak1), (_, *_, peak30) = rows
     rss1, rss30 = rows[0][8], rows[1][8]
     print(

@@ -173,3 +173,15 @@ def host(text: str) -> str:
         return str(ipaddress.ip_address(text))
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text[:40]}' is not an IP address (e.g. 127.0.0.1)") from None
+
+
+def sweep_steps(text: str) -> int:
+    """``descgen sweep --steps N``: steps per joint, 1 to 3600 (descgen.sweep.MAX_STEPS, not
+    imported: parsing must not import numpy)."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!a} is not a whole number") from None
+    if not 1 <= n <= 3600:
+        raise argparse.ArgumentTypeError(f"{n} is not between 1 and 3600")
+    return n

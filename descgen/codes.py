@@ -32,6 +32,7 @@ GROUPS: dict[str, str] = {
     "simulate": "descgen simulate (MuJoCo as a consumer)",
     "import": "descgen import (a URDF or Xacro becomes a spec)",
     "command": "the command line",
+    "sweep": "descgen sweep (each joint through its range: directions and self-collisions)",
 }
 
 
@@ -179,6 +180,122 @@ register(
         """Padding inflates every collision shape while sampling: a large value makes near pairs look
       Always or Default and disables checks MoveIt needs; a negative one shrinks shapes and marks
       touching pairs Never. Use 0 to a few millimetres.""",
+    ),
+    C(
+        "SPEC110",
+        "moveit-acceleration-missing",
+        "error",
+        "spec",
+        "With moveit:, a joint of a planning group has no limit.acceleration.",
+        """MoveIt on Jazzy refuses to time-parameterise a trajectory for a joint without an acceleration
+      limit ("No acceleration limit was defined for joint", TOTG), and Pilz PTP throws; a URDF has no
+      acceleration attribute, so joint_limits.yaml is the only place for it. State the team's chosen
+      limit with its source under the joint's limit: (e.g. 'acceleration: 180 deg/s^2').""",
+    ),
+    C(
+        "SPEC111",
+        "moveit-velocity-missing",
+        "error",
+        "spec",
+        "With moveit:, a joint of a planning group has no (positive) velocity limit.",
+        """TOTG refuses a joint without a bounded velocity ("No velocity limit was defined for joint"), so
+      the MoveIt package would plan nothing for the group. Add limit: with velocity and acceleration.""",
+    ),
+    C(
+        "SPEC112",
+        "moveit-kinematics-unknown-group",
+        "error",
+        "spec",
+        "moveit.kinematics names a group the spec does not define.",
+        """MoveIt skips kinematics.yaml entries for groups missing from the SRDF, so a misspelt group
+      silently keeps no IK solver. Name one of semantic.groups.""",
+    ),
+    C(
+        "SPEC113",
+        "moveit-initial-state-unknown",
+        "error",
+        "spec",
+        "moveit.initial_state names no group state of the spec.",
+        """initial_positions.yaml is written from that state; a misspelt name would silently start the
+      demo at another pose. Name one of semantic.group_states.""",
+    ),
+    C(
+        "SPEC114",
+        "moveit-group-without-controller",
+        "warning",
+        "spec",
+        "With moveit:, no ros2_control action-server controller commands some joints of a planning group.",
+        """MoveIt executes through controllers listed in moveit_controllers.yaml; without one for the group
+      it can plan but execution fails ("Unable to identify any set of controllers that can actuate the
+      specified joints"). Add a joint_trajectory_controller for the group's joints, or accept plan-only use.""",
+    ),
+    C(
+        "SPEC115",
+        "moveit-without-groups",
+        "error",
+        "spec",
+        "moveit: is set, but the spec has no semantic.groups.",
+        """A MoveIt config package plans for SRDF groups; without one there is nothing to configure.""",
+    ),
+    C(
+        "SPEC116",
+        "moveit-limit-not-positive",
+        "error",
+        "spec",
+        "A MoveIt limit that is a magnitude (joint acceleration, Pilz limits, IK timeout) is zero or negative.",
+        """TOTG rejects a negative max_acceleration, and zero stops every motion; Pilz and the IK plugins
+      read these as magnitudes. Write a positive value with its unit.""",
+    ),
+    C(
+        "SPEC120",
+        "package-name-not-rep144",
+        "error",
+        "spec",
+        "The generated package's name (package.name, or <robot>_description) does not start with a "
+        "lowercase letter or is no REP 144 name.",
+        """The package name is package.xml's <name>, the CMake project, FindPackageShare in the launch
+      files and every package:// URI; colcon, rosdep and the ament index expect REP 144 names (lowercase
+      letters, digits and single '_', starting with a letter). A robot named 2dof_planar is a good URDF
+      name but its package cannot be 2dof_planar_description: add package: {name: ...} with the
+      suggested name (the robot and its files keep their name).""",
+    ),
+    C(
+        "SPEC121",
+        "derived-package-name-advice",
+        "warning",
+        "spec",
+        "The derived package name <robot>_description has uppercase letters or '__' (REP 144 says it must not).",
+        """catkin_pkg accepts such a name with a warning, so specs that generated before still do; but
+      REP 144 requires lowercase (file systems without case) and no '__' (generated symbols use it as a
+      separator). Add package: {name: ...} with the suggested name.""",
+    ),
+    C(
+        "SPEC125",
+        "multi-dof-value-count",
+        "error",
+        "spec",
+        "A group-state or known-pose value has the wrong number of values for its joint type.",
+        """srdfdom reads one number per variable, and MoveIt (RobotModel::buildGroupStates) drops a joint's
+      value whose count differs from the joint model's variables, with only a log line: planar takes x, y,
+      theta, floating trans_x..z and rot_x..w (planar_joint_model.cpp, floating_joint_model.cpp), a 1-DOF
+      joint exactly one. The hint shows a list in that order.""",
+    ),
+    C(
+        "SPEC126",
+        "floating-value-not-unit-quaternion",
+        "error",
+        "spec",
+        "A floating joint's group-state value has a rotation that is not a unit quaternion (within 1e-9).",
+        """MoveIt renormalises such a quaternion silently (FloatingJointModel::normalizeRotation), so the
+      pose the SRDF names is not the one written; a typo in a component goes unnoticed.""",
+    ),
+    C(
+        "SPEC127",
+        "quaternion-component-not-a-number",
+        "error",
+        "spec",
+        "A quaternion component of a floating joint's value is not a plain number.",
+        """rot_x..rot_w have no unit; a text such as "1 deg" or "a" would be a guess about what was meant.""",
     ),
     C(
         "SPEC001",
@@ -712,6 +829,26 @@ register(
         """ros2_control reads parameters from mappings; the wrong shape configures nothing or crashes
       the node. Write key: value lines indented below the key.""",
     ),
+    C(
+        "MOVEIT020",
+        "moveit-config-not-mapping",
+        "error",
+        "read",
+        "A MoveIt config YAML file (joint_limits, moveit_controllers, kinematics, initial_positions) "
+        "is empty or its root is not a mapping.",
+        """MoveItConfigsBuilder loads each file as a mapping of ROS parameters; a list, a scalar or an
+      empty file gives MoveIt nothing (or an exception), so there is nothing to audit. Write key: value
+      lines, as the Setup Assistant lays the file out.""",
+    ),
+    C(
+        "MOVEIT021",
+        "moveit-config-folder-unusable",
+        "error",
+        "read",
+        "The --moveit-config folder does not exist, or holds none of the MoveIt config files.",
+        """A wrong folder would otherwise audit nothing and report no finding, which reads as a clean
+      MoveIt config. Name the package folder (or its config/) that holds joint_limits.yaml.""",
+    ),
 )
 
 # --------------------------------------------------------------------------- generate / check
@@ -810,9 +947,11 @@ register(
         "urdf-readback-differs",
         "error",
         "generate",
-        "The URDF read back by yourdfpy differs from the model (or yourdfpy cannot read it).",
+        "The URDF read back by an independent parser differs from the model (or it cannot read it).",
         """An independent parser must read what descgen meant (check 2); a difference means the template
-      writes a field wrong or the file was edited.""",
+      writes a field wrong or the file was edited. The parser is descgen's lxml read-back reader
+      (urdfdom's rules, no code shared with the renderer or the model), plus yourdfpy under
+      check --thorough.""",
     ),
     C(
         "GEN031",
@@ -869,6 +1008,35 @@ register(
         """A reviewer reads the page instead of re-running every proof, so a page that shows yesterday's
       verdicts is worse than none. check rebuilds it in memory (MuJoCo's machine-dependent lines aside)
       and compares. Run descgen report SPEC and commit the result.""",
+    ),
+    C(
+        "GEN090",
+        "moveit-readback-mismatch",
+        "error",
+        "generate",
+        "A file of the MoveIt config package, parsed back, does not state what the model says.",
+        """joint_limits.yaml, kinematics.yaml, moveit_controllers.yaml, initial_positions.yaml and
+      pilz_cartesian_limits.yaml are read back with yaml.safe_load and compared with the model (joint
+      names, SI limits, controller joints and action_ns). A mismatch is a descgen or template bug: a
+      package that loads but plans with other limits than the spec states. Report it; fix the template.""",
+    ),
+    C(
+        "GEN091",
+        "moveit-integer-value",
+        "error",
+        "generate",
+        "A MoveIt parameter declared double is written so that YAML reads it as an integer.",
+        """MoveIt declares limits as PARAMETER_DOUBLE; an integer value (max_velocity: 3) aborts move_group
+      with InvalidParameterTypeException (moveit/moveit2#2776). Every such value must read back as a float.""",
+    ),
+    C(
+        "GEN092",
+        "moveit-file-unreadable",
+        "error",
+        "generate",
+        "A file of the MoveIt config package does not parse (YAML, Python launch file, package.xml).",
+        """The package is loaded by moveit_configs_utils and colcon; a file that does not parse stops the
+      launch. Report it; fix the template that wrote it.""",
     ),
     C(
         "GEN081",
@@ -1419,21 +1587,49 @@ register(
         "import-state-value-not-kept",
         "warning",
         "import",
-        "A group-state value of the SRDF that is not one number (a multi-DOF joint's) is not kept in the spec.",
-        """The spec holds one number per joint in a group state, so a planar or floating joint's values
-      cannot be written there. Nothing may be lost silently: the value and its SRDF line are reported, and
-      the generated SRDF lacks it until it is added by hand.""",
+        "A group-state value of the SRDF that the spec cannot hold (several numbers for a joint that is no "
+        "planar/floating virtual joint, or unreadable) is not kept.",
+        """The spec holds one number per joint in a group state, or a list for a planar or floating virtual
+      joint (kept since the spec takes lists). Anything else cannot be written there. Nothing may be lost
+      silently: the value and its SRDF line are reported, and the generated SRDF lacks it until it is
+      added by hand.""",
+    ),
+    C(
+        "IMP026",
+        "import-continuous-limit-dropped",
+        "info",
+        "import",
+        "A continuous joint's lower/upper limit is left out of the imported spec.",
+        """urdfdom reads lower and upper on any joint, but no consumer applies them to a continuous one:
+      ros2_control's joint_limits (joint_limits_urdf.hpp) marks it angle_wraparound, MoveIt unbounds it
+      (RevoluteJointModel::setContinuous, after reading them), and descgen's URDF does not write them.
+      Kept, they would read as limits the robot does not have; dropped, the round trip compares what
+      every reader uses. Reported so nothing is lost silently.""",
     ),
     C(
         "IMP012",
         "import-package-outside-project",
-        "warning",
+        "info",
         "import",
         "A package named by package:// meshes lies outside the imported spec's project, so the spec cannot "
         "record it under package_paths:.",
         """A spec records package folders relative to itself and inside its project (docs/security.md), so
-      it works on any machine. validate and generate will not find these meshes until the package is copied
-      into the project and its folder added under package_paths:.""",
+      it works on any machine. A package elsewhere is named on the command line instead: pass the folder
+      that holds it as --package-path to validate, generate and check. The generated package references
+      its meshes and depends on it (exec_depend) instead of copying another package's files.""",
+    ),
+    C(
+        "IMP014",
+        "import-package-name-chosen",
+        "info",
+        "import",
+        "The imported spec names its package (package.name) because <robot>_description is no REP 144 name "
+        "or is the package its meshes come from.",
+        """A robot named 2dof_planar is a valid URDF, but 2dof_planar_description is no ROS package name
+      (REP 144: it must start with a lowercase letter); UR's robot ur would generate ur_description, the
+      upstream package that holds its meshes, and two packages of one name shadow each other. import
+      writes a valid, distinct name (robot_2dof_planar_description, ur_descgen_description); rename it
+      as you like.""",
     ),
     C(
         "IMP013",
@@ -1444,5 +1640,135 @@ register(
         "spec with parts:/sensors: did not give back the same robot.",
         """parts: and sensors: are written only when the generated URDF stays the same robot; otherwise the
       flat spec (which the round trip proves) is written instead. Nothing is lost.""",
+    ),
+)
+
+# ------------------------------------------------------------------ issue 12: ros2_control and controllers import
+register(
+    C(
+        "IMP020",
+        "import-ros2-control-variant",
+        "info",
+        "import",
+        "A <ros2_control> block is imported into ros2_control: with the hardware the description expands to "
+        "for the given --xacro-arg values.",
+        """A Xacro may choose its hardware plugin by an argument (use_mock_hardware, use_gazebo): import sees one
+      expansion, so it says which hardware it imported. Other variants are added under hardware.variants by
+      hand (or seen by importing with other arguments).""",
+    ),
+    C(
+        "IMP021",
+        "import-ros2-control-passthrough",
+        "info",
+        "import",
+        "A <ros2_control> block holds something the spec's ros2_control: cannot say, so every block stays "
+        "verbatim in passthrough:.",
+        """Nothing may be lost silently: a transmission, a joint-level param, an interface size or an unknown
+      param has no spec field. All blocks stay together (one block in the spec and one in pass-through would be
+      two sources of one hardware); the message names what could not be expressed.""",
+    ),
+    C(
+        "IMP022",
+        "import-ros2-control-derived-params",
+        "info",
+        "import",
+        "generate writes interface params that the imported <ros2_control> block leaves to ros2_control's "
+        "defaults: command min/max from the URDF limits, state initial_value.",
+        """The generated block always states them. Jazzy only tightens the URDF limits with min/max, so equal
+      values change nothing, and 0 is GenericSystem's start value; a joint whose range excludes 0 starts mid-range.
+      The round trip allows exactly these additions and lists them so a reviewer can check them.""",
+    ),
+    C(
+        "IMP023",
+        "import-update-rate-default",
+        "info",
+        "import",
+        "No controller_manager update_rate was given; the imported spec says 100 Hz, controller_manager's default.",
+        """The spec states the rate the generated controllers file writes; 100 Hz is what controller_manager runs at
+      without one. Write the real rate of your hardware.""",
+    ),
+    C(
+        "IMP024",
+        "import-controllers-entry-not-imported",
+        "warning",
+        "import",
+        "An entry of the controllers YAML is not imported: a controller_manager parameter other than update_rate "
+        "and the controller types, an entry that names no controller, or a controller whose name or type the spec "
+        "cannot hold.",
+        """The generated config/ros2_controllers.yaml lacks it, so it is said, never silently dropped. Keep it in a
+      parameters file of your own if the robot needs it.""",
+    ),
+    C(
+        "IMP025",
+        "import-wheel-params-derived",
+        "info",
+        "import",
+        "A diff_drive_controller in the imported controllers file gives no wheel_separation/wheel_radius; "
+        "generate writes the values derived from the URDF.",
+        """diff_drive_controller needs both; descgen derives them from the wheel joints and collision cylinders.
+      State measured values under calibrated: if the robot has them.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- added with issue 15: descgen sweep
+register(
+    C(
+        "SWEEP001",
+        "sweep-collision-at-limit",
+        "warning",
+        "sweep",
+        "Two links the SRDF does not disable collide at a joint limit while that joint is swept (the others at "
+        "the state); the message gives the limit's value and where the contact starts.",
+        """A joint driven to its limit (homing, a planner using the whole range, a teleoperator) drives the
+      robot into itself there. Narrow the limit so the motion stops before the contact, change the collision
+      shapes if they are too large, or disable the pair in the SRDF if the contact is by design.""",
+    ),
+    C(
+        "SWEEP002",
+        "sweep-collision-in-range",
+        "warning",
+        "sweep",
+        "Two links the SRDF does not disable collide inside a joint's range while that joint is swept (the others "
+        "at the state); the message gives the joint values where the contact starts and ends.",
+        """MoveIt plans around such a contact, but a jog or a controller that moves one joint alone runs into it.
+      It is expected at some states (an arm folded over its base); check the shapes and the range.""",
+    ),
+    C(
+        "SWEEP003",
+        "sweep-no-range",
+        "info",
+        "sweep",
+        "A joint is not swept: it has no lower and upper limit, or its range is empty.",
+        """Only joints with a range can be moved through it. A revolute or prismatic joint without limits is
+      reported by the audit; an empty range (lower equal to upper) holds the joint still.""",
+    ),
+    C(
+        "SWEEP004",
+        "sweep-unknown-state",
+        "error",
+        "sweep",
+        "--state names no group state and no known pose of the robot.",
+        """The other joints are held at the named state while each joint is swept; an unknown name is a typo.
+      The message lists the names there are.""",
+    ),
+    C(
+        "SWEEP005",
+        "sweep-collisions-not-checked",
+        "warning",
+        "sweep",
+        "The self-collisions of the sweep were not checked: pinocchio (the collision extra) is not installed, or "
+        "it could not load the collision geometry. The directions are still reported.",
+        """The collision check needs pinocchio with coal: pip install 'descgen[collision]'. A sweep without it
+      says nothing about contacts, so it is said rather than left out.""",
+    ),
+    C(
+        "SWEEP006",
+        "sweep-mesh-left-out",
+        "warning",
+        "sweep",
+        "A collision mesh was not found, so that shape is left out of the sweep's collision check.",
+        """The mesh could not be resolved inside the description's package or --package-path (docs/security.md),
+      so its link is checked without it and contacts with it are missed. Give --package-path or fix the
+      filename.""",
     ),
 )

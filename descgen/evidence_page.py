@@ -5,6 +5,13 @@ evidence, so ``descgen check`` rebuilds it in memory and compares it like a gene
 What may differ between machines without the robot changing (MuJoCo's drift digits and wall
 time, whether MuJoCo is installed) sits between ``<!-- volatile -->`` markers and is left out
 of that comparison.
+
+Building the page runs the tf scenario, the fault catalogue and validation again (about a
+second), so its last line records the hash of everything it was built from and of its own
+comparable text (descgen/evidence_hash.py). ``check`` takes a page whose record matches as
+current without building it; any other page is built and compared as before. The record
+line itself is not compared: a page that reads the same is not stale because descgen's code
+changed, it is only built again until ``descgen report`` records the new inputs.
 """
 
 from __future__ import annotations
@@ -19,11 +26,18 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import cli_format, pose_images, report
+from . import cli_format, evidence_hash, pose_images, report
 from .findings import Finding, InputError, Where
 
 PAGE = "evidence/README.md"
 _VOLATILE = re.compile(r"<!-- volatile -->.*?<!-- /volatile -->", re.S)
+_RECORD = re.compile(r"^<!-- descgen input-sha256=[0-9a-f]{64} content-sha256=[0-9a-f]{64} -->\n?", re.M)
+# what the page reads from the package besides the files it is given: verdict.json, which files
+# exist (links), the plot names; the page itself, its pictures and the machine's frames.svg aside
+_NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg")
+# the libraries whose behaviour the page prints: xacro and lxml (proofs), pint and pydantic
+# (validation), rosbags (the tf scenario's recording), numpy, PyYAML, Jinja2 (rendering), trimesh
+_TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Jinja2", "trimesh")
 TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
 
 
@@ -134,8 +148,14 @@ def _verdict(ok: bool, text: str) -> str:
 # -- the sections ---------------------------------------------------------------------------
 
 
-def _model(files: dict[str, str], robot: Any, package: Path) -> list[str]:
+Proofs = Sequence[tuple[str, Sequence[Finding]]]
+
+
+def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
     from .checks import CHECKS
+
+    # the results plan() already has (the same checks on the same files), else run them here
+    done = dict(proofs) if proofs is not None else {name: check(files, robot, package) for name, check in CHECKS}
 
     urdf = next((rel for rel in files if rel.startswith("urdf/") and rel.endswith(".urdf")), "")
     xacro = next((rel for rel in files if rel.endswith(".urdf.xacro")), "")
@@ -150,8 +170,8 @@ def _model(files: dict[str, str], robot: Any, package: Path) -> list[str]:
         "|---|---|",
     ]
     ok = True
-    for name, check in CHECKS:
-        found = check(files, robot, package)
+    for name, _ in CHECKS:
+        found = done[name]
         bad = sorted({f.code for f in found if f.severity in ("error", "warning")})
         notes = sorted({f.code for f in found if f.severity == "info"})
         ok = ok and not bad
@@ -340,9 +360,12 @@ def build(
     check_out: tuple[str, str],
     n: int,
     simulate: bool = True,
+    proofs: Proofs | None = None,
+    key: str | None = None,
 ) -> str:
     """The whole page. ``check_out`` is (stdout, stderr) of ``descgen check`` for the transcript,
-    ``n`` the number of files generate writes."""
+    ``n`` the number of files generate writes, ``proofs`` the results of checks.CHECKS by name
+    when the caller has them, ``key`` the :func:`input_key` to record on the last line."""
     validation, _ = _validation(spec, shown)
     traces, dvm = _control(package)
     parts = [
@@ -351,7 +374,7 @@ def build(
         f"Written by `descgen report {shown}`; `descgen check` verifies it is current. "
         "Each section links the committed files it summarises and ends with a verdict.",
         "",
-        *_model(files, robot, package),
+        *_model(files, robot, package, proofs),
         *validation,
         *_poses(robot, package),
         *_frames(package, files),
@@ -361,7 +384,58 @@ def build(
         *_transcript(spec, shown, check_out, n, simulate, robot),
         *_field_story(spec, shown, robot),
     ]
-    return _relative("\n".join(parts).rstrip("\n") + "\n", package)
+    page = _relative("\n".join(parts).rstrip("\n") + "\n", package)
+    return page if key is None else page + f"<!-- {evidence_hash.stamp(key, comparable(page))} -->\n"
+
+
+def input_key(
+    spec: Path,
+    shown: str,
+    files: dict[str, str],
+    meshes: dict[str, bytes],
+    package: Path,
+    check_out: tuple[str, str],
+    n: int,
+) -> str:
+    """The hash of everything the page's comparable text is a function of: the spec's bytes,
+    the rendered files and meshes, what the page reads from the package, what check printed
+    (paths as the project sees them), descgen's code and the libraries it prints the work of."""
+    import shutil
+
+    check_urdf = shutil.which("check_urdf")
+    urdfdom = None
+    if check_urdf is not None:  # its identity as frames_svg names dot's: no process started
+        st = Path(check_urdf).resolve().stat()
+        urdfdom = [str(Path(check_urdf).resolve()), st.st_size, st.st_mtime_ns]
+    return evidence_hash.digest(
+        {
+            "what": PAGE,
+            **evidence_hash.descgen_identity(),
+            "tools": evidence_hash.versions(*_TOOLS),
+            "check_urdf": urdfdom,
+            "spec": evidence_hash.sha256(spec.read_bytes()),
+            "shown": shown,
+            "files": {rel: evidence_hash.sha256(text) for rel, text in files.items()},
+            "meshes": {rel: evidence_hash.sha256(data) for rel, data in meshes.items()},
+            "package": evidence_hash.package_files(package, _NOT_READ),
+            "check_out": [_relative(text, package) for text in check_out],
+            "n": n,
+        }
+    )
+
+
+def current(package: Path, key: str) -> bool:
+    """True when the committed page records ``key`` and its text is what was recorded with it
+    (check then takes it as current without building it)."""
+    target = package / PAGE
+    if target.is_symlink() or not target.is_file():
+        return False
+    now = target.read_text(encoding="utf-8", errors="replace")
+    found = list(_RECORD.finditer(now))
+    if len(found) != 1:
+        return False
+    body = now[: found[0].start()] + now[found[0].end() :]
+    return evidence_hash.reusable(evidence_hash.recorded(found[0].group(0)), key, comparable(body))
 
 
 def _relative(page: str, package: Path) -> str:
@@ -373,8 +447,8 @@ def _relative(page: str, package: Path) -> str:
 
 
 def comparable(page: str) -> str:
-    """The page without its volatile parts (what check compares)."""
-    return _VOLATILE.sub("<!-- volatile -->", page)
+    """The page without its volatile parts and its input record (what check compares)."""
+    return _VOLATILE.sub("<!-- volatile -->", _RECORD.sub("", page))
 
 
 def stale(package: Path, fresh: str) -> list[Finding]:

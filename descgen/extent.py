@@ -88,9 +88,9 @@ def robot_span(robot: Robot) -> float:
     """Diagonal of the box around every link frame and primitive shape at the zero pose
     (root frame): an upper bound on the size of the robot's known parts. 0 when the tree
     cannot be posed."""
-    from .kinematics import forward
+    from .kinematics import at_zero
 
-    poses = forward(robot)
+    poses = at_zero(robot)
     if not poses:
         return 0.0
     lows, highs = [], []

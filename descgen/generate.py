@@ -1,6 +1,11 @@
 """``generate`` and ``check``: render the package, prove it, then write it (all or nothing)
 or compare it with what is committed.
 
+A spec with ``moveit:`` has a second package, ``<robot>_moveit_config`` (descgen/moveit/),
+beside the description package. Each package is switched as a whole by :func:`write_package`,
+so the two are two swaps, description first: a run killed between them leaves the new
+description beside the old MoveIt package, which ``check`` reports as stale.
+
 This module is where generated files are written (:func:`write_package`). The package is
 switched as a whole, never file by file: the complete new package (the old one's files,
 minus ours that changed or went stale, plus the new files) is built in a scratch folder
@@ -27,7 +32,7 @@ import os
 import re
 import secrets
 import shutil
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import cast
@@ -50,6 +55,11 @@ class Plan:
     findings: tuple[Finding, ...]  # warnings from the spec, errors and warnings from the checks
     # the robot's own meshes: package path -> (source file beside the spec, its bytes)
     meshes: dict[str, tuple[Path, bytes]] = field(default_factory=dict)
+    # the MoveIt config package (spec ``moveit:``): its files and folder; empty and None without it
+    moveit_files: dict[str, str] = field(default_factory=dict)
+    moveit_dir: Path | None = None
+    # each proof's findings by its name (checks.CHECKS order): the evidence page shows them
+    proofs: tuple[tuple[str, tuple[Finding, ...]], ...] = ()
 
     def content(self) -> dict[str, str | bytes]:
         """Every file generate writes: the text files and the mesh copies."""
@@ -85,13 +95,20 @@ def spec_display(spec: Path, out_root: Path) -> str:
         return spec.name
 
 
-def plan(spec: Path, out_root: Path | None = None, templates: Path | None = None) -> Plan:
+def plan(
+    spec: Path,
+    out_root: Path | None = None,
+    templates: Path | None = None,
+    package_paths: Sequence[Path] = (),
+    thorough: bool = False,
+) -> Plan:
     """Load, render and prove one spec. Raises InputError for invalid input.
 
     ``templates`` (--templates) overrides the folder the spec records (``templates:``); that
-    one renders sandboxed, since the spec is someone else's data."""
+    one renders sandboxed, since the spec is someone else's data. ``package_paths``
+    (--package-path) are searched for ``package://`` meshes after the spec's ``package_paths:``."""
     root = out_root or default_out(spec)
-    loaded = load_spec(spec)
+    loaded = load_spec(spec, package_paths=package_paths)
     robot = loaded.robot
     recorded = loaded.spec.templates
     sandboxed = templates is None and recorded is not None
@@ -107,8 +124,21 @@ def plan(spec: Path, out_root: Path | None = None, templates: Path | None = None
     if meshes:
         files[MANIFEST] = header.add(MANIFEST, _manifest(meshes), shown, robot.spec_hash or "0" * 64)
     package_dir = root / package_name(robot)
-    found = [*loaded.findings, *checks.run_all(files, robot, package_dir)]
-    return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes)
+    proofs = tuple(
+        (name, tuple(check(files, robot, package_dir)))
+        for name, check in [*checks.CHECKS, *(checks.THOROUGH if thorough else [])]
+    )  # checks.run_all, kept by name for the evidence page
+    found = [*loaded.findings, *(f for _, done in proofs for f in done)]
+    moveit_files: dict[str, str] = {}
+    moveit_dir = None
+    if robot.moveit is not None:
+        from .moveit import proof
+        from .moveit.render import moveit_package_name, render
+
+        moveit_dir = root / moveit_package_name(robot)
+        moveit_files = render(robot, files, shown, templates, sandboxed)
+        found += proof.check(moveit_files, robot, moveit_dir)
+    return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes, moveit_files, moveit_dir, proofs)
 
 
 def _with_matrix(robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple[Path, bytes]], pkg: Path) -> Robot:
@@ -135,7 +165,11 @@ def _with_matrix(robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple
         sem.collision_matrix,
         committed,
     )
-    return replace(robot, semantic=replace(sem, matrix=matrix))
+    from .sweep import evidence as sweep_evidence
+
+    out = replace(robot, semantic=replace(sem, matrix=matrix))
+    sweep_evidence.reuse_committed(out, pkg)  # check: the committed sweep's collision runs, when still valid
+    return out
 
 
 # --- the robot's own meshes: copied byte for byte, their hashes in a manifest -----------------------
@@ -555,33 +589,49 @@ def write_package(package_dir: Path, files: Mapping[str, str | bytes]) -> Outcom
     return out
 
 
-def generate(spec: Path, out_root: Path | None = None, templates: Path | None = None, force: bool = False) -> Outcome:
-    p = plan(spec, _output_root(spec, out_root), templates)
+def generate(
+    spec: Path,
+    out_root: Path | None = None,
+    templates: Path | None = None,
+    force: bool = False,
+    package_paths: Sequence[Path] = (),
+) -> Outcome:
+    p = plan(spec, _output_root(spec, out_root), templates, package_paths)
     outcome = Outcome(findings=list(p.findings))
     if outcome.failed:
         return outcome
     refuse_unsafe(p.package_dir)  # before reading any file of the package
-    edited = [] if force else _hand_edited(p.package_dir, p.files, p.meshes)
+    if p.moveit_dir is not None:
+        refuse_unsafe(p.moveit_dir)
+    edited = [] if force else [(p.package_dir, rel) for rel in _hand_edited(p.package_dir, p.files, p.meshes)]
+    if p.moveit_dir is not None and not force:
+        edited += [(p.moveit_dir, rel) for rel in _hand_edited(p.moveit_dir, p.moveit_files)]
     if edited:
-        for rel in edited:
+        for folder, rel in edited:
             how = (
                 f"is neither its source nor what {MANIFEST} recorded"
-                if rel in p.meshes
+                if folder == p.package_dir and rel in p.meshes
                 else "its content no longer matches its header"
             )
+            shown = rel if folder == p.package_dir else f"{folder.name}/{rel}"
             outcome.findings.append(
                 Finding(
                     "GEN004",
                     "error",
-                    f"{rel} was edited by hand ({how}); not overwritten",
+                    f"{shown} was edited by hand ({how}); not overwritten",
                     "move the change into the spec or a template, or run with --force to discard it",
-                    f"file:{rel}",
-                    Where(str(p.package_dir / rel)),
+                    f"file:{shown}",
+                    Where(str(folder / rel)),
                 )
             )
         return outcome
     try:
         written = write_package(p.package_dir, p.content())
+        if p.moveit_dir is not None:  # the second swap (see the module docstring)
+            second = write_package(p.moveit_dir, dict(p.moveit_files))
+            written.written += [f"{p.moveit_dir.name}/{rel}" for rel in second.written]
+            written.unchanged += [f"{p.moveit_dir.name}/{rel}" for rel in second.unchanged]
+            written.removed += [f"{p.moveit_dir.name}/{rel}" for rel in second.removed]
     except OSError as exc:  # a full disk, a read-only --out: the old package is still in place
         raise InputError(
             [
@@ -602,33 +652,59 @@ def generate(spec: Path, out_root: Path | None = None, templates: Path | None = 
 
 
 def draw_frames(package_dir: Path) -> None:
-    """evidence/frames.svg from frames.dot when Graphviz's dot is installed. Its bytes depend
-    on the Graphviz version, so it is not part of what check compares (and not committed)."""
-    dot = shutil.which("dot")
-    source = package_dir / "evidence" / "frames.dot"
-    if dot is None or not source.is_file():
-        return
-    import subprocess
+    """evidence/frames.svg from frames.dot when Graphviz's dot is installed, and only when the
+    svg does not already record this dot text and this dot (see frames_svg)."""
+    from .frames_svg import draw
 
-    subprocess.run(
-        [dot, "-Tsvg", str(source), "-o", str(source.with_suffix(".svg"))], check=False, capture_output=True, timeout=60
-    )
+    draw(package_dir)
 
 
-def check(spec: Path, out_root: Path | None = None, templates: Path | None = None, write_page: bool = False) -> Outcome:
+def check(
+    spec: Path,
+    out_root: Path | None = None,
+    templates: Path | None = None,
+    write_page: bool = False,
+    package_paths: Sequence[Path] = (),
+    thorough: bool = False,
+) -> Outcome:
     """Regenerate in memory and compare with the files on disk; run every check. The evidence
-    page (``descgen report``) is compared when it exists, and written with ``write_page``."""
+    page (``descgen report``) is compared when it exists, and written with ``write_page``.
+    ``thorough`` adds the slow-to-start proofs (checks.THOROUGH: yourdfpy)."""
     root = _output_root(spec, out_root)
-    p = plan(spec, root, templates)
+    p = plan(spec, root, templates, package_paths, thorough)
     refuse_unsafe(p.package_dir)  # a link would let the diff print a file from elsewhere
     outcome = Outcome(findings=list(p.findings))
     diffs: list[str] = []
-    for rel, fresh in p.files.items():
-        target = p.package_dir / rel
+    _compare(p.package_dir, p.files, p.robot.spec_hash, "", set(p.meshes), outcome, diffs)
+    outcome.findings += _stale_meshes(p)
+    if p.moveit_dir is not None:  # the MoveIt package is compared like the description package
+        refuse_unsafe(p.moveit_dir)
+        _compare(p.moveit_dir, p.moveit_files, p.robot.spec_hash, f"{p.moveit_dir.name}/", set(), outcome, diffs)
+    outcome.diff = "".join(diffs)
+    outcome.findings += _stale_evidence(spec, p, root or default_out(spec), write_page)
+    outcome.findings += _evidence_page(spec, p, root or default_out(spec), outcome, write_page)
+    return outcome
+
+
+def _compare(
+    package_dir: Path,
+    files: Mapping[str, str],
+    spec_hash: str | None,
+    prefix: str,
+    other: set[str],
+    outcome: Outcome,
+    diffs: list[str],
+) -> None:
+    """Each rendered file against the one on disk (GEN004-GEN006, with a diff), and files of
+    ours no longer rendered (GEN007; ``other`` are generated files compared elsewhere).
+    ``prefix`` names the package in messages when it is not the description package."""
+    for rel, fresh in files.items():
+        shown = f"{prefix}{rel}"
+        target = package_dir / rel
         where = Where(str(target))
         if not target.is_file():
             outcome.findings.append(
-                Finding("GEN006", "error", f"{rel} is missing", "run descgen generate", f"file:{rel}", where)
+                Finding("GEN006", "error", f"{shown} is missing", "run descgen generate", f"file:{shown}", where)
             )
             continue
         current = target.read_text(encoding="utf-8", errors="replace")
@@ -637,7 +713,7 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
         stamp = header.read(current)
         if stamp is not None and stamp.hand_edited:
             what, hint, code = "was edited by hand", "move the change into the spec or a template", "GEN004"
-        elif stamp is not None and stamp.spec_hash != p.robot.spec_hash:
+        elif stamp is not None and stamp.spec_hash != spec_hash:
             what, hint, code = "is stale: the spec changed", "run descgen generate and commit the result", "GEN005"
         else:
             what, hint, code = (
@@ -645,34 +721,29 @@ def check(spec: Path, out_root: Path | None = None, templates: Path | None = Non
                 "run descgen generate and commit the result",
                 "GEN005",
             )
-        outcome.findings.append(Finding(code, "error", f"{rel} {what}", hint, f"file:{rel}", where))
+        outcome.findings.append(Finding(code, "error", f"{shown} {what}", hint, f"file:{shown}", where))
         diffs.append(
             "".join(
                 difflib.unified_diff(
                     current.splitlines(keepends=True),
                     fresh.splitlines(keepends=True),
-                    fromfile=f"a/{rel}",
-                    tofile=f"b/{rel}",
+                    fromfile=f"a/{shown}",
+                    tofile=f"b/{shown}",
                 )
             )
         )
-    outcome.findings += _stale_meshes(p)
-    for rel in _ours(p.package_dir):
-        if rel not in p.files and rel not in p.meshes:
+    for rel in _ours(package_dir):
+        if rel not in files and rel not in other:
             outcome.findings.append(
                 Finding(
                     "GEN007",
                     "error",
-                    f"{rel} is no longer generated",
+                    f"{prefix}{rel} is no longer generated",
                     "run descgen generate",
-                    f"file:{rel}",
-                    Where(str(p.package_dir / rel)),
+                    f"file:{prefix}{rel}",
+                    Where(str(package_dir / rel)),
                 )
             )
-    outcome.diff = "".join(diffs)
-    outcome.findings += _stale_evidence(spec, p, root or default_out(spec))
-    outcome.findings += _evidence_page(spec, p, root or default_out(spec), outcome, write_page)
-    return outcome
 
 
 def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page: bool) -> list[Finding]:
@@ -685,7 +756,11 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: Outcome, write_page
         return []
     shown = spec_display(spec, root)
     lines = page.check_lines(shown, outcome.findings, outcome.diff)
-    fresh = page.build(spec, shown, p.files, p.robot, p.package_dir, lines, len(p.content()), simulate=write_page)
+    meshes = {rel: data for rel, (_, data) in p.meshes.items()}
+    key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, len(p.content()))
+    if not write_page and page.current(p.package_dir, key):  # built from these very inputs: not again
+        return pose_images.stale(p.package_dir, p.robot)
+    fresh = page.build(spec, shown, p.files, p.robot, p.package_dir, lines, len(p.content()), write_page, p.proofs, key)
     if not write_page:
         return page.stale(p.package_dir, fresh) + pose_images.stale(p.package_dir, p.robot)
     bad = page.failed_verdicts(fresh)
@@ -733,9 +808,9 @@ def _stale_meshes(p: Plan) -> list[Finding]:
     return found
 
 
-def _stale_evidence(spec: Path, p: Plan, root: Path) -> list[Finding]:
+def _stale_evidence(spec: Path, p: Plan, root: Path, refresh: bool = False) -> list[Finding]:
     """The committed control evidence (written by ``descgen control``, not by generate) run
     again from what verdict.json records, and compared like a generated file."""
     from .control.evidence_check import check_evidence
 
-    return check_evidence(p.package_dir, p.robot, spec_display(spec, root))
+    return check_evidence(p.package_dir, p.robot, spec_display(spec, root), refresh)

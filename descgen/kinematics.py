@@ -60,6 +60,26 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat
     return poses
 
 
+_AT_ZERO: list[tuple[Robot, dict[str, Mat]]] = []  # the zero poses of the last few robots
+_AT_ZERO_KEPT = 4
+
+
+def at_zero(robot: Robot) -> dict[str, Mat]:
+    """``forward(robot)`` at the zero pose, computed once per robot object and shared by the
+    audit rules, the span and the load estimates that all need it (read-only matrices: a
+    caller cannot change what the next one sees; do not add to the dict). Keyed by
+    identity, as Robot is immutable."""
+    for seen, poses in _AT_ZERO:
+        if seen is robot:
+            return poses
+    poses = forward(robot)
+    for m in poses.values():
+        m.flags.writeable = False
+    _AT_ZERO.insert(0, (robot, poses))
+    del _AT_ZERO[_AT_ZERO_KEPT:]
+    return poses
+
+
 def relative(poses: Mapping[str, Mat], frame: str, base: str | None) -> Mat | None:
     """Pose of ``frame`` in ``base`` (the root when None)."""
     if frame not in poses or (base is not None and base not in poses):

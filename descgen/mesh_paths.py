@@ -54,26 +54,34 @@ def split_package_uri(name: str) -> tuple[str, str] | None:
     return pkg, rest
 
 
-def resolve(name: str, base: Path, root: Path, package_paths: Sequence[Path]) -> Resolved:
+def resolve(
+    name: str, base: Path, root: Path, package_paths: Sequence[Path], packages: dict[str, Path | None] | None = None
+) -> Resolved:
     """Resolve ``name`` as written in a file whose folder is ``base``. A relative name must
     stay inside ``root``; a ``package://`` name inside its package, found in ``package_paths``
-    (in order). Never raises for a bad name: a NUL byte, an over-long name or a link loop is
-    a file that cannot be there."""
+    (in order). ``packages`` memoises package name -> folder across the calls of one
+    description (searching the package paths is most of the cost). Never raises for a bad
+    name: a NUL byte, an over-long name or a link loop is a file that cannot be there."""
     try:
-        return _resolve(name, base, root, package_paths)
+        return _resolve(name, base, root, package_paths, {} if packages is None else packages)
     except (OSError, ValueError):
         return Resolved("missing")
 
 
-def _resolve(name: str, base: Path, root: Path, package_paths: Sequence[Path]) -> Resolved:
+def _resolve(
+    name: str, base: Path, root: Path, package_paths: Sequence[Path], packages: dict[str, Path | None]
+) -> Resolved:
     uri = split_package_uri(name)
     package = None
     if uri is not None:
         package, rest = uri
-        found = find_package(package, package_paths) if PACKAGE_NAME.fullmatch(package) else None
-        if found is None:
+        if package not in packages:
+            found = find_package(package, package_paths) if PACKAGE_NAME.fullmatch(package) else None
+            packages[package] = found.resolve() if found is not None else None
+        folder = packages[package]
+        if folder is None:
             return Resolved("unresolved", package=package)
-        inside, target = found.resolve(), (found / rest).resolve()
+        inside, target = folder, (folder / rest).resolve()
     elif name.startswith("file://") or Path(name).is_absolute():
         return Resolved("escapes")
     else:
@@ -115,10 +123,12 @@ def mesh_status(
     files: dict[str, Path] = {}
     base = description.resolve().parent
     search = [*package_paths, base.parent, base]
+    root = package_root(base)  # once per description, not per mesh
+    packages: dict[str, Path | None] = {}
     for name in _mesh_names(robot):
         if name in status:
             continue
-        r = resolve(name, base, package_root(base), search)
+        r = resolve(name, base, root, search, packages)
         status[name] = r.state
         if r.state == "ok" and r.path is not None:
             files[name] = r.path
@@ -164,7 +174,17 @@ def _folder(spec: Path, written: str) -> tuple[Path | None, str]:
 
 
 def package_name(robot: Robot) -> str:
-    return f"{robot.name}_description"
+    """The generated package's name: the spec's ``package.name``, else ``<robot>_description``.
+    The one place every output (package.xml, CMake, launch, ``package://``, ``$(find)``, the
+    MoveIt package) takes it from."""
+    return robot.package.name or f"{robot.name}_description"
+
+
+def moveit_package_name(robot: Robot) -> str:
+    """``<robot>_moveit_config`` beside ``<robot>_description``: the description package's
+    name with ``_description`` replaced (or ``_moveit_config`` added)."""
+    name = package_name(robot)
+    return f"{name.removesuffix('_description')}_moveit_config"
 
 
 def own_mesh_path(written: str) -> str:
@@ -295,12 +315,16 @@ def _refusal(name: str, r: Resolved, at: Where, have_paths: bool) -> Finding | N
             at,
         )
     if r.state == "unresolved":
-        where_ = "in no folder of package_paths:" if have_paths else "but the spec records no package_paths:"
+        where_ = (
+            "in no folder of package_paths: or --package-path"
+            if have_paths
+            else "but the spec records no package_paths: and no --package-path was given"
+        )
         return _error(
             "SPEC062",
             f"mesh '{name}' names package '{r.package}', which is {where_}",
-            "add the folder that holds the package (relative to the spec) under package_paths:, "
-            "or fix the package name",
+            f"pass --package-path DIR, DIR being the folder that holds {r.package}/ (to validate, generate and "
+            "check alike), or record that folder relative to the spec under package_paths:, or fix the package name",
             at,
         )
     if r.problem is not None:
@@ -312,7 +336,9 @@ def _own_package(name: str, own: str, at: Where) -> Finding:
     return _error(
         "SPEC062",
         f"mesh '{name}' names the package descgen generates ({own}), which does not exist before it",
-        "write the path relative to the spec (e.g. meshes/base.stl): generate copies it into the package",
+        "write the path relative to the spec (e.g. meshes/base.stl): generate copies it into the package; "
+        f"or, if the mesh belongs to an existing package called {own}, give the generated package another "
+        "name (package: {name: ...}) and pass --package-path",
         at,
     )
 

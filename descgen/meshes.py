@@ -1,4 +1,5 @@
-"""Mesh files, measured: each read once (cached by content hash) with trimesh.
+"""Mesh files, measured: each read once (cached by content hash, in memory and on disk:
+descgen/mesh_cache.py) with numpy (binary STL) or trimesh.
 
 What a rule or the inertia derivation needs from a mesh: its bounding box, volume,
 watertightness and triangle count in the file's own units, and the unit the file declares
@@ -76,30 +77,24 @@ def load(path: Path) -> Loaded:
     kind = path.suffix.lower().lstrip(".")
     if kind not in FORMATS:
         raise MeshError(f"'.{kind}' is not a mesh format descgen reads (STL, OBJ, DAE)")
-    try:
-        st = os.stat(path)
-        seen = (str(path), st.st_ino, st.st_size, st.st_mtime_ns)  # the same file, unchanged: no re-read
-    except (OSError, ValueError):
-        seen = None
+    seen = _stat_key(path)
     with _LOCK:
         key = _BY_STAT.get(seen) if seen is not None else None
-    if key is None:
+        hit = _CACHE.get(key) if key is not None else None
+    if hit is None:
         try:
             data = read_bounded(path, "mesh", MAX_MESH_BYTES)
         except InputError as exc:
             raise MeshError(exc.findings[0].message) from None
-        key = hashlib.sha256(kind.encode() + b"\0" + data).hexdigest()
+        key = _content_key(data, kind)
         with _LOCK:
-            if seen is not None:
-                _BY_STAT[seen] = key
             hit = _CACHE.get(key)
         if hit is None:
             hit = _parsed(data, kind)
-            with _LOCK:
-                _CACHE[key] = hit
-    else:
         with _LOCK:
-            hit = _CACHE[key]
+            if seen is not None:
+                _BY_STAT[seen] = key
+            _CACHE[key] = hit
     if isinstance(hit, MeshError):
         raise MeshError(str(hit))
     return hit
@@ -112,12 +107,133 @@ def _parsed(data: bytes, kind: str) -> Loaded | MeshError:
         return exc
 
 
+_FACTS: dict[str, MeshFacts] = {}  # content key -> facts, for measure() (no arrays kept)
+
+
 def measure(path: Path) -> MeshFacts:
-    """The facts of the mesh at ``path``; a mesh that cannot be read gives facts with a ``problem``."""
+    """The facts of the mesh at ``path``; a mesh that cannot be read gives facts with a ``problem``.
+
+    Looked up by content: in this process, then in the persistent cache (descgen/mesh_cache.py),
+    and only then parsed; a binary STL is measured with numpy (:func:`_stl_facts`), other
+    formats by trimesh. Hashing the bytes is ~100x cheaper than parsing them."""
+    from . import mesh_cache  # imports this module
+
+    kind = path.suffix.lower().lstrip(".")
+    if kind not in FORMATS:
+        return MeshFacts(problem=f"'.{kind}' is not a mesh format descgen reads (STL, OBJ, DAE)")
+    seen = _stat_key(path)
+    with _LOCK:
+        key = _BY_STAT.get(seen) if seen is not None else None
+        known = _FACTS.get(key) if key is not None else None
+    if known is not None:
+        return known
     try:
-        return load(path).facts
+        data = read_bounded(path, "mesh", MAX_MESH_BYTES)
+    except InputError as exc:
+        return MeshFacts(problem=exc.findings[0].message)
+    key = _content_key(data, kind)
+    facts = _FACTS.get(key) or mesh_cache.get(key, kind)
+    if facts is None:
+        facts = _measured(data, kind)
+        mesh_cache.put(key, kind, facts)
+    with _LOCK:
+        if seen is not None:
+            _BY_STAT[seen] = key
+        _FACTS[key] = facts
+    return facts
+
+
+def _measured(data: bytes, kind: str) -> MeshFacts:
+    try:
+        fast = _stl_facts(data) if kind == "stl" else None
+        return fast if fast is not None else _parse(data, kind).facts
     except MeshError as exc:
         return MeshFacts(problem=str(exc))
+
+
+def _stat_key(path: Path) -> tuple[str, int, int, int] | None:
+    """The same file, unchanged since it was hashed in this process: no re-read."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return (str(path), st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _content_key(data: bytes, kind: str) -> str:
+    return hashlib.sha256(kind.encode() + b"\0" + data).hexdigest()
+
+
+# one binary STL triangle: normal, three corners (little-endian float32), attribute byte count
+_STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+_MERGE_DIGITS = 8  # trimesh merges vertices equal to 8 decimals (tol.merge = 1e-8)
+
+
+def _stl_facts(data: bytes) -> MeshFacts | None:
+    """The facts of a binary STL measured with numpy, equal to what :func:`_parse` gets through
+    trimesh (``trimesh.load(process=True)``: vertices merged when equal to 8 decimals, keeping
+    the first; edges, watertightness, winding and volume computed as trimesh computes them;
+    tests/test_mesh_cache.py compares both on every corpus STL). None for anything but a
+    well-formed binary STL of finite corners (ASCII, a length that disagrees with the header's
+    count, NaN): trimesh decides those, as before. Several times faster than trimesh's load."""
+    if len(data) < 84:
+        return None
+    (count,) = struct.unpack_from("<I", data, 80)
+    if count == 0 or count > MAX_TRIANGLES or len(data) != 84 + _STL_RECORD.itemsize * count:
+        return None  # trimesh tries binary by exactly this length test, then ASCII
+    corners = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)["corners"]
+    points = corners.reshape(-1, 3).astype(np.float64)
+    if not np.isfinite(points).all():
+        return None  # trimesh drops non-finite vertices first
+    # merge: one group per rounded position, represented by its first point (stable sort)
+    rounded = (points * (10**_MERGE_DIGITS)).round().astype(np.int64)
+    order = np.lexsort((rounded[:, 2], rounded[:, 1], rounded[:, 0]))
+    ranked = rounded[order]
+    starts = np.empty(len(points), dtype=bool)
+    starts[0] = True
+    starts[1:] = np.any(ranked[1:] != ranked[:-1], axis=1)
+    index = np.empty(len(points), dtype=np.int64)
+    index[order] = np.cumsum(starts) - 1
+    vertices = points[order[starts]]
+    faces = index.reshape(-1, 3)
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)  # every kept vertex is a corner of a triangle
+    watertight, winding, open_edges = _edge_facts(faces)
+    volume = None
+    if watertight and winding:
+        # trimesh.triangles.mass_properties: integral[0] = cross_x * (x0 + x1 + x2), summed / 6
+        triangles = vertices[faces]
+        vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+        crosses = np.cross(vectors[:, 0], vectors[:, 1])
+        f1 = triangles[:, 0, :] + triangles[:, 1, :] + triangles[:, 2, :]
+        volume = abs(float((crosses[:, 0] * f1[:, 0]).sum() / 6.0))
+    return MeshFacts(
+        lower=(float(lo[0]), float(lo[1]), float(lo[2])),
+        upper=(float(hi[0]), float(hi[1]), float(hi[2])),
+        volume=volume,
+        watertight=bool(watertight and winding),
+        triangles=count,
+        unit_meter=None,
+        open_edges=open_edges,
+    )
+
+
+def _edge_facts(faces: np.ndarray) -> tuple[bool, bool, int]:
+    """(every edge in exactly two triangles, every such pair runs in opposite directions,
+    edges of one triangle only): trimesh.graph.is_watertight and :func:`_open_edges`."""
+    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    ends = np.sort(edges, axis=1)
+    lo = int(ends.min())
+    span = int(ends.max()) - lo + 1
+    keys = (ends[:, 0] - lo) * span + (ends[:, 1] - lo)
+    order = np.argsort(keys)  # which of a pair comes first does not matter to the winding test
+    ranked = keys[order]
+    starts = np.flatnonzero(np.concatenate(([True], ranked[1:] != ranked[:-1])))
+    counts = np.diff(np.append(starts, len(ranked)))
+    watertight = bool(np.all(counts == 2))
+    pairs = starts[counts == 2]
+    first, second = edges[order[pairs]], edges[order[pairs + 1]]
+    winding = bool(np.all(first[:, 1] == second[:, 0]))
+    return watertight, winding, int(np.count_nonzero(counts == 1))
 
 
 def _parse(data: bytes, kind: str) -> Loaded:
@@ -192,20 +308,39 @@ def _check_dae(data: bytes) -> float | None:
 
 def _open_edges(faces: np.ndarray) -> int:
     """Edges used by one triangle only: why a mesh is not watertight, counted for the message."""
+    if len(faces) == 0:
+        return 0
     edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
-    _, counts = np.unique(edges, axis=0, return_counts=True)
-    return int(np.count_nonzero(counts == 1))
+    # one int64 key per edge, sorted: np.unique(axis=0) on rows is several times slower
+    # (at most 12 M vertices, so the key stays below 2**63)
+    lo = int(edges.min())
+    span = int(edges.max()) - lo + 1
+    keys = np.sort((edges[:, 0] - lo) * span + (edges[:, 1] - lo))
+    differs = np.diff(keys) != 0
+    single = np.concatenate(([True], differs)) & np.concatenate((differs, [True]))  # unlike both neighbours
+    return int(np.count_nonzero(single))
 
 
 # -- the meshes of a robot ----------------------------------------------------------------------
 
 
+_ROBOT_FACTS: list[tuple[Robot, dict[str, MeshFacts]]] = []  # the last few robots' facts
+
+
 def facts_of_robot(robot: Robot) -> dict[str, MeshFacts]:
     """Mesh filename -> facts, for every mesh the loaders resolved to a file
-    (``Robot.mesh_files``, descgen/mesh_paths.py); read once per content (cached)."""
+    (``Robot.mesh_files``, descgen/mesh_paths.py); read once per content (cached), and
+    gathered once per robot object for the four rules that ask (do not change the dict)."""
+    with _LOCK:
+        for seen, facts in _ROBOT_FACTS:
+            if seen is robot:
+                return facts
     out: dict[str, MeshFacts] = {}
     for name, file in robot.mesh_files:
         out[name] = measure(Path(file))
+    with _LOCK:
+        _ROBOT_FACTS.insert(0, (robot, out))
+        del _ROBOT_FACTS[4:]
     return out
 
 

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from .findings import Where
+from .moveit_model import MoveItConfig
 
 Vec3 = tuple[float, float, float]
 NOWHERE = Where("<unknown>")
@@ -145,6 +146,8 @@ class Limit:
     effort: float | None = None
     velocity: float | None = None
     where: Where = NOWHERE
+    # rad/s^2 or m/s^2; a spec value only (a URDF has no acceleration): MoveIt's joint_limits.yaml
+    acceleration: float | None = None
 
 
 @dataclass(frozen=True)
@@ -359,6 +362,8 @@ class GroupState:
     group: str
     values: tuple[tuple[str, float], ...]
     where: Where = NOWHERE
+    # planar/floating (virtual) joints: every variable in MoveIt's order (x y theta; trans_x..z rot_x..w)
+    multi: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -442,6 +447,8 @@ class KnownPose:
     frames: tuple[FrameMeasurement, ...] = ()
     source: str | None = None
     where: Where = NOWHERE
+    # planar/floating virtual joints (as GroupState.multi): kept for the SRDF, outside the URDF's FK
+    multi: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -471,6 +478,34 @@ class PackageInfo:
     maintainer: str = "descgen user"
     email: str = "maintainer@example.com"
     license: str = "Apache-2.0"
+    name: str | None = None  # the spec's package.name; None: <robot>_description (mesh_paths.package_name)
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """One planning group's IK settings (MoveIt's kinematics.yaml)."""
+
+    group: str
+    solver: str
+    search_resolution: float
+    timeout: float  # s
+
+
+@dataclass(frozen=True)
+class MoveItSettings:
+    """What a team chooses for its MoveIt config package (spec ``moveit:``, SI); what the
+    package derives from the rest of the robot is computed in descgen/moveit/."""
+
+    kinematics: tuple[Kinematics, ...] = ()  # one per group written to kinematics.yaml
+    velocity_scaling: float = 0.1
+    acceleration_scaling: float = 0.1
+    initial_state: str | None = None  # a group state; None: each joint at MoveIt's default value
+    # Pilz cartesian limits: m/s, m/s^2, m/s^2 (negative, as MoveIt's Setup Assistant writes it), rad/s
+    max_trans_vel: float = 1.0
+    max_trans_acc: float = 2.25
+    max_trans_dec: float = -5.0
+    max_rot_vel: float = 1.57
+    where: Where = NOWHERE
 
 
 @dataclass(frozen=True)
@@ -505,6 +540,10 @@ class Robot:
     # fixed joints a <gazebo reference="joint"> keeps from sdformat's lumping (preserveFixedJoint or
     # disableFixedJointLumping); read from a URDF, empty for a spec (GEOM040, GEOM041)
     sdf_preserved_joints: tuple[str, ...] = ()
+    # the spec's ``moveit:`` section: generate writes <robot>_moveit_config/ when it is set
+    moveit: MoveItSettings | None = None
+    # a MoveIt config package read with the robot (``audit --moveit-config``; the MOVEIT rules)
+    moveit_config: MoveItConfig | None = None
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

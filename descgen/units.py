@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 import re
 import sys
 from dataclasses import dataclass
@@ -26,11 +25,12 @@ from decimal import Decimal
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .cache_dir import cache_root
+
 if TYPE_CHECKING:
     import pint
 
 # Environment variable naming the folder for pint's parsed-definition cache ("" = no cache).
-CACHE_ENV = "DESCGEN_CACHE_DIR"
 
 
 def _import_pint() -> Any:
@@ -74,15 +74,9 @@ def _cache_folder() -> Path | None:
     """Where pint may cache its parsed definitions, per pint version; None when caching is off
     or the folder cannot be made."""
     version = _import_pint().__version__
-    configured = os.environ.get(CACHE_ENV)
-    if configured == "":
+    base = cache_root()
+    if base is None:
         return None
-    if configured is None:
-        import platformdirs
-
-        base = platformdirs.user_cache_path("descgen", appauthor=False)
-    else:
-        base = Path(configured)
     folder = base / f"pint-{version}"
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -119,6 +113,9 @@ KINDS: dict[str, Kind] = {
         Kind("frequency", "1/[time]", "Hz", (0,), "100 Hz"),
         Kind("linear_velocity", "[length]/[time]", "m/s", (0,), "0.1 m/s"),
         Kind("angular_velocity", "1/[time]", "rad/s", (1,), "90 deg/s"),
+        # joint acceleration limits (MoveIt's joint_limits.yaml; a URDF has none)
+        Kind("linear_acceleration", "[length]/[time]**2", "m/s**2", (0,), "0.2 m/s^2"),
+        Kind("angular_acceleration", "1/[time]**2", "rad/s**2", (1,), "180 deg/s^2"),
         Kind("force", "[force]", "N", (0,), "500 N"),
         Kind("torque", "[force]*[length]", "N*m", (0,), "40 N*m"),
         Kind("inertia", "[mass]*[length]**2", "kg*m**2", (0,), "0.01 kg*m^2"),
@@ -346,15 +343,18 @@ def _to_si(value: object, kind_name: str) -> float:
     return 0.0 if si == 0 else si  # -0.0 would print as "-0"
 
 
-# The texts nearly every spec is written in ("300 mm", "-90 deg", "1.2 kg") are converted
-# without pint: a number and one of these units, each with the kind it is and its factor to
-# SI exactly as pint states it (tests/test_units_fast.py compares every entry with pint).
-# pint costs ~0.5 ms per text and its registry ~50 ms per process; anything else, and any
+# The texts nearly every spec is written in ("300 mm", "-90 deg", "1.2 kg", "75 mm - 30 mm")
+# are converted without pint: a number and one of these units, each with the kind it is and its
+# factor to SI exactly as pint states it (tests/test_units_fast.py compares every entry with
+# pint), or + - * / arithmetic over such terms (see _expression_si). pint costs ~0.5 ms per
+# text, and importing it and building its registry ~0.1 s per process; anything else, and any
 # unit of another kind than the field's, still goes through pint and its checks.
 _SIMPLE_UNITS: dict[str, tuple[str, str]] = {
     "mm": ("length", "0.001"),
     "cm": ("length", "0.01"),
     "m": ("length", "1.0"),
+    "in": ("length", "0.0254"),
+    "ft": ("length", "0.30479999999999996"),
     "deg": ("angle", "0.017453292519943295"),
     "rad": ("angle", "1.0"),
     "g": ("mass", "0.001"),
@@ -368,22 +368,127 @@ _SIMPLE_UNITS: dict[str, tuple[str, str]] = {
     "mm/s": ("linear_velocity", "0.001"),
     "rad/s": ("angular_velocity", "1.0"),
     "deg/s": ("angular_velocity", "0.017453292519943295"),
+    "rpm": ("angular_velocity", "0.10471975511965977"),
+    "m/s^2": ("linear_acceleration", "1.0"),
+    "rad/s^2": ("angular_acceleration", "1.0"),
+    "deg/s^2": ("angular_acceleration", "0.017453292519943295"),
     "kg*m^2": ("inertia", "1.0"),
 }
-# at most 15 significant digits and a small exponent: always a finite float, read as pint reads it
-_SIMPLE = re.compile(r"([+-]?[0-9]{1,15}(?:\.[0-9]{1,15})?(?:[eE][+-]?[0-9]{1,2})?) {0,4}([A-Za-z*/^2]+)")
+# At most 15 significant digits and a small exponent: always a finite float, read as pint reads
+# it. No leading zero before a digit: Python's tokenizer, which pint uses, reads "0123" as the
+# two numbers 0 and 123 (pint: 0 mm), so such text is left to pint.
+_NUMBER_TEXT = r"(?:0|[1-9][0-9]{0,14})(?:\.[0-9]{1,15})?(?:[eE][+-]?[0-9]{1,2})?"
+_SIMPLE = re.compile(rf"([+-]?{_NUMBER_TEXT}) {{0,4}}([A-Za-z*/^2]+)")
 
 
 def _simple_si(text: str, kind_name: str) -> float | None:
-    """The SI value of a plain "<number> <unit>" text of this kind, None for anything else."""
-    m = _SIMPLE.fullmatch(text.strip()) if len(text) <= MAX_TEXT else None
-    if m is None:
+    """The SI value of a plain "<number> <unit>" text of this kind, or of + - * / arithmetic
+    over such terms, computed as pint computes it; None for anything else (pint decides)."""
+    if len(text) > MAX_TEXT:
         return None
+    m = _SIMPLE.fullmatch(text.strip())
+    if m is None:
+        return _expression_si(text, kind_name)
     unit = _SIMPLE_UNITS.get(m.group(2))
     if unit is None or unit[0] != kind_name:
         return None
     si = float(Decimal(repr(float(m.group(1)))) * Decimal(unit[1]))
     return 0.0 if si == 0 else si
+
+
+# Arithmetic in quantity text ("75 mm - 30 mm", "19.1 in / 2", "25 mm + 2 * 5 mm"), evaluated the
+# way pint evaluates it (pint_eval.py): numbers are Python ints or floats as Python's tokenizer
+# reads them, a unit name is a quantity of magnitude 1, "*", "/" and the implicit product of a
+# number and a unit bind tighter than "+" and "-", operators of equal priority group left to right,
+# and a unary sign binds tightest; a sum of two quantities in the same unit adds their magnitudes.
+# Accepted only when the result is one unit of the field's kind to the first power: each term has
+# exactly one unit, never in a divisor, and every term of a sum has the same unit. Anything else
+# (another unit, parentheses, powers, a zero divisor, a non-finite result) is left to pint.
+_TOKEN = re.compile(rf"( *)(?:({_NUMBER_TEXT})|([A-Za-z]+)|([-+*/]))")
+_ATOMIC_UNITS = {name: unit for name, unit in _SIMPLE_UNITS.items() if name.isalpha()}
+_Term = tuple[int | float, str | None]  # magnitude, unit name (None: a plain number)
+
+
+class _NotSimpleError(Exception):
+    pass
+
+
+def _tokens(text: str) -> list[str]:
+    """Operators, numbers and unit names, with "" for the implicit product of a number and the
+    unit written after it ("5 mm"); _NotSimpleError for anything pint might read otherwise."""
+    out: list[str] = []
+    kinds: list[str] = []
+    pos, end = 0, len(text)
+    while pos < end:
+        m = _TOKEN.match(text, pos)
+        if m is None:
+            raise _NotSimpleError
+        kind = "number" if m.group(2) else "name" if m.group(3) else "op"
+        if kinds and kinds[-1] != "op" and kind != "op":
+            # two operands in a row: only "<number> <unit>", with a space between them
+            if not (kinds[-1] == "number" and kind == "name" and m.group(1)):
+                raise _NotSimpleError
+            out.append("")
+            kinds.append("op")
+        out.append(m.group(2) or m.group(3) or m.group(4))
+        kinds.append(kind)
+        pos = m.end()
+    return out
+
+
+def _expression_si(text: str, kind_name: str) -> float | None:
+    try:
+        tokens = _tokens(text.strip())
+        (mag, unit), pos = _sum(tokens, 0)
+        if pos != len(tokens) or unit is None:
+            return None
+        factor_of = _ATOMIC_UNITS[unit]
+        if factor_of[0] != kind_name:
+            return None
+        value = float(mag)
+    except (_NotSimpleError, OverflowError, ZeroDivisionError, IndexError):
+        return None
+    if not math.isfinite(value):
+        return None
+    si = float(Decimal(repr(value)) * Decimal(factor_of[1]))
+    return 0.0 if si == 0 else si
+
+
+def _sum(tokens: list[str], pos: int) -> tuple[_Term, int]:
+    (a, ua), pos = _product(tokens, pos)
+    while pos < len(tokens) and tokens[pos] in ("+", "-"):
+        op = tokens[pos]
+        (b, ub), pos = _product(tokens, pos + 1)
+        if ua != ub:
+            raise _NotSimpleError  # pint converts or refuses: its answer
+        a = a + b if op == "+" else a - b
+    return (a, ua), pos
+
+
+def _product(tokens: list[str], pos: int) -> tuple[_Term, int]:
+    (a, ua), pos = _signed(tokens, pos)
+    while pos < len(tokens) and tokens[pos] in ("*", "/", ""):
+        op = tokens[pos]
+        (b, ub), pos = _signed(tokens, pos + 1)
+        if ub is not None and (ua is not None or op == "/"):
+            raise _NotSimpleError  # a unit squared, or a unit in a divisor
+        a, ua = (a / b if op == "/" else a * b), ua or ub
+    return (a, ua), pos
+
+
+def _signed(tokens: list[str], pos: int) -> tuple[_Term, int]:
+    token = tokens[pos]
+    if token in ("+", "-"):
+        (a, ua), pos = _signed(tokens, pos + 1)
+        return (a * -1 if token == "-" else a, ua), pos  # pint: x * -1
+    if token in ("*", "/", ""):
+        raise _NotSimpleError
+    if token[0].isdigit():
+        number: int | float = int(token) if token.isdigit() else float(token)
+        return (number, None), pos + 1
+    if token not in _ATOMIC_UNITS:
+        raise _NotSimpleError
+    return (1, token), pos + 1
 
 
 def _convert(q: pint.Quantity[Any], target: Any) -> float:
@@ -418,7 +523,9 @@ def duration(value: object, low: float, high: float, bare_seconds: bool = False)
 
 def describe_si(value: float, kind_name: str) -> str:
     """How an SI value is shown in messages, e.g. ``25 m``."""
-    unit = {"angle": "rad", "angular_velocity": "rad/s"}.get(kind_name, KINDS[kind_name].si_unit)
+    unit = {"angle": "rad", "angular_velocity": "rad/s", "angular_acceleration": "rad/s^2"}.get(
+        kind_name, KINDS[kind_name].si_unit
+    )
     return f"{value:.6g} {unit.replace('**', '^')}"
 
 
@@ -443,6 +550,8 @@ DEFAULT_RANGES: dict[str, Range] = {
     "mass": Range("mass", 0.0005, 5000.0),
     "linear_velocity": Range("linear_velocity", 0.0, 10.0),
     "angular_velocity": Range("angular_velocity", 0.0, 100.0),
+    "linear_acceleration": Range("linear_acceleration", 0.0, 100.0),
+    "angular_acceleration": Range("angular_acceleration", 0.0, 1000.0),
     "force": Range("force", 0.0, 1e5),
     "torque": Range("torque", 0.0, 1e4),
     "frequency": Range("frequency", 0.1, 10000.0),

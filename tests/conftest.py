@@ -11,7 +11,7 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
 
 # tests write only to their tmp_path: no pint definition cache in the user's cache folder
-# (descgen.units.CACHE_ENV; "" switches the cache off, subprocesses inherit it)
+# (descgen.cache_dir.CACHE_ENV; "" switches the cache off, subprocesses inherit it)
 os.environ.setdefault("DESCGEN_CACHE_DIR", "")
 
 

@@ -28,6 +28,8 @@ def project(tmp_path: Path) -> Path:
     shutil.copy(ROOT / TRAJECTORY, tmp_path / TRAJECTORY)
     # without the evidence page (tests/test_evidence_page.py): these tests are about the control run
     shutil.copytree(ROOT / "generated" / PKG, tmp_path / "generated" / PKG, ignore=shutil.ignore_patterns("README.md"))
+    moveit = "warehouse_arm_moveit_config"  # the spec's moveit: package, which check compares too
+    shutil.copytree(ROOT / "generated" / moveit, tmp_path / "generated" / moveit)
     return tmp_path
 
 

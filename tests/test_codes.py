@@ -23,7 +23,7 @@ from descgen.report import sarif
 from . import codes_seen
 
 ROOT = Path(__file__).resolve().parents[1]
-CODE = re.compile(r"[A-Z]{3,5}\d{3}")
+CODE = re.compile(r"[A-Z]{3,6}\d{3}")
 ENTRIES = list(codes.entries())
 KNOWN = {e.code for e in ENTRIES}
 

@@ -1,17 +1,20 @@
-"""Cold start: a command imports only what it uses. ``descgen --help`` and ``validate`` run in
-a fresh interpreter and must not have imported the heavy optional libraries (trimesh and
-scipy come with yourdfpy or meshes, matplotlib with control plots, pinocchio with tests,
-mujoco with simulate), nor, for --help, pint, pydantic or numpy."""
+"""Cold start: a command imports only what it uses. ``descgen --help``, ``validate`` and
+``check`` run in a fresh interpreter and must not have imported the heavy optional libraries
+(trimesh and scipy come with yourdfpy or meshes, matplotlib with control plots, pinocchio and
+coal with the collision matrix, mujoco with simulate), nor, for --help, pint, pydantic or
+numpy. And generate draws frames.svg with Graphviz only when frames.dot changed."""
 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
-from tests.conftest import EXAMPLE, ROOT
+from tests.conftest import EXAMPLE, ROOT, require_tool
 
 HEAVY = {"trimesh", "scipy", "matplotlib", "pinocchio", "mujoco", "yourdfpy", "rosbags", "networkx"}
 
@@ -20,7 +23,7 @@ _PROBE = """
 import json, sys
 from descgen.cli import main
 seen = {}
-for name, argv in (("help", ["--help"]), ("validate", ["validate", sys.argv[1]])):
+for name, argv in (("help", ["--help"]), ("validate", ["validate", sys.argv[1]]), ("check", ["check", sys.argv[1]])):
     try:
         main(argv)
     except SystemExit as exc:
@@ -55,8 +58,128 @@ def test_validate_imports_no_heavy_library(probe: dict[str, dict[str, object]]) 
     validate = probe["validate"]
     assert validate["code"] == 0  # the example is valid: the probe really validated
     loaded = set(validate["modules"])  # type: ignore[call-overload]
-    assert {"pint", "pydantic"} <= loaded  # it did parse quantities and models
+    assert "pydantic" in loaded  # it did parse models
+    assert "pint" not in loaded  # every quantity of the example is read without pint (units._simple_si)
     assert loaded & HEAVY == set()
+
+
+# what check must not pay for: proof 2 reads the URDF back with lxml (yourdfpy, and with it
+# trimesh and scipy, only under --thorough); the collision matrix is reused from the committed
+# SRDF by its input hash (no pinocchio, no coal); nothing simulates or plots
+CHECK_HEAVY = {"trimesh", "scipy", "matplotlib", "pinocchio", "coal", "mujoco", "yourdfpy"}
+
+
+@pytest.mark.e2e
+def test_check_imports_no_heavy_library(probe: dict[str, dict[str, object]]) -> None:
+    check = probe["check"]
+    assert check["code"] == 0  # the committed example is current: check really ran every proof
+    loaded = set(check["modules"])  # type: ignore[call-overload]
+    assert {"lxml", "numpy", "xacro"} <= loaded
+    assert loaded & CHECK_HEAVY == set()
+
+
+@pytest.mark.e2e
+def test_check_of_recorded_evidence_imports_no_rosbags(tmp_path: Path) -> None:
+    """rosbags came with check's control-evidence re-run and the evidence page's tf scenario;
+    both are taken from the committed files when their recorded inputs are unchanged. The
+    records are written here by ``descgen report`` on a copy (descgen's code is among the
+    inputs, so the repository's records change with every edit to descgen)."""
+    import shutil
+
+    from tests.helpers import cli
+
+    for rel in ("specs/warehouse_arm.yaml", "specs/trajectories/ready.yaml"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / rel, tmp_path / rel)
+    for pkg in ("warehouse_arm_description", "warehouse_arm_moveit_config"):
+        shutil.copytree(ROOT / "generated" / pkg, tmp_path / "generated" / pkg)
+    assert cli("report", "specs/warehouse_arm.yaml", cwd=tmp_path).returncode == 0
+    done = subprocess.run(
+        [sys.executable, "-c", _PROBE, str(tmp_path / "specs" / "warehouse_arm.yaml")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
+    line = next(x for x in done.stdout.splitlines() if x.startswith("PROBE"))
+    check = json.loads(line[len("PROBE") :])["check"]
+    assert check["code"] == 0  # the copy is current: check really compared everything
+    assert "rosbags" not in set(check["modules"])
+
+
+def _stub_dot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A ``dot`` first on PATH that logs each call and writes an svg naming the dot text's hash."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    log = tmp_path / "dot.log"
+    stub = bin_dir / "dot"
+    stub.write_text(
+        "#!/bin/sh\n"
+        f'echo "$@" >> "{log}"\n'
+        "printf '<?xml version=\"1.0\"?>\\n<svg><title>%s</title></svg>\\n' "
+        '"$(sha256sum < "$2" | cut -c1-16)" > "$4"\n',
+        encoding="utf-8",
+    )
+    stub.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}")
+    return log
+
+
+def _calls(log: Path) -> int:
+    return len(log.read_text(encoding="utf-8").splitlines()) if log.exists() else 0
+
+
+def test_frames_svg_is_drawn_only_when_the_dot_changed(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from descgen.generate import draw_frames
+
+    log = _stub_dot(tmp_path, monkeypatch)
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    dot, svg = evidence / "frames.dot", evidence / "frames.svg"
+    dot.write_text("digraph frames { a -> b }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    first = svg.read_text(encoding="utf-8")
+    assert _calls(log) == 1 and "<svg>" in first
+    draw_frames(tmp_path / "pkg")  # same dot text, same dot: not drawn again
+    assert _calls(log) == 1 and svg.read_text(encoding="utf-8") == first
+    dot.write_text("digraph frames { a -> c }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 2 and svg.read_text(encoding="utf-8") != first
+    svg.unlink()  # a deleted drawing is drawn again
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 3 and svg.is_file()
+    svg.write_text('<?xml version="1.0"?>\n<svg/>\n', encoding="utf-8")  # a drawing that records nothing
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 4
+
+
+def test_frames_svg_is_drawn_again_by_another_dot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from descgen.generate import draw_frames
+
+    log = _stub_dot(tmp_path, monkeypatch)
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    (evidence / "frames.dot").write_text("digraph frames { a -> b }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    stub = tmp_path / "bin" / "dot"
+    os.utime(stub, ns=(stub.stat().st_atime_ns, stub.stat().st_mtime_ns + 10**9))  # Graphviz upgraded
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 2
+
+
+def test_real_dot_draws_a_valid_stamped_svg(tmp_path: Path) -> None:
+    from lxml import etree
+
+    from descgen.generate import draw_frames
+
+    require_tool("dot")
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    (evidence / "frames.dot").write_text('digraph frames { "base_link" -> "tool0" }\n', encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    root = etree.parse(str(evidence / "frames.svg")).getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    assert "descgen-source: frames.dot sha256" in (evidence / "frames.svg").read_text(encoding="utf-8")
 
 
 def test_pint_is_imported_without_scipy_and_scipy_still_works_after() -> None:

@@ -73,6 +73,7 @@ def test_package_layout(generated: tuple[Path, Path]) -> None:
         "rviz/warehouse_arm.rviz",
         "evidence/known_poses.md",
         "evidence/collision_matrix.md",
+        "evidence/sweep.md",
         "evidence/frames.md",
         "evidence/frames.dot",
     }
@@ -98,8 +99,14 @@ def test_deterministic_twice_and_from_two_working_directories(tmp_path: Path) ->
         k: (tmp_path / "b" / "generated" / PKG / k).read_bytes() for k in snapshot(tmp_path / "b" / "generated" / PKG)
     }
     assert first == second
+    # the MoveIt config package (spec moveit:) is as deterministic
+    moveit = {p: snapshot(tmp_path / p / "generated" / "warehouse_arm_moveit_config") for p in ("a", "b")}
+    assert moveit["a"] and moveit["a"] == moveit["b"]
+    for k in moveit["a"]:
+        a, b = (tmp_path / p / "generated" / "warehouse_arm_moveit_config" / k for p in ("a", "b"))
+        assert a.read_bytes() == b.read_bytes(), k
     again = cli("generate", str(spec_a), cwd=tmp_path / "a")
-    assert again.returncode == 0 and "wrote 0 files, 14 unchanged" in again.stdout
+    assert again.returncode == 0 and f"wrote 0 files, {len(first) + len(moveit['a'])} unchanged" in again.stdout
     # and what the repository has committed is the same bytes
     committed = ROOT / "generated" / PKG
     assert {k: (committed / k).read_bytes() for k in first} == first

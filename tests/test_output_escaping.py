@@ -562,9 +562,10 @@ def test_xacro_property_stems_become_names_xacro_accepts(stem: str) -> None:
     from descgen.render.views import Values
 
     v = Values(xacro=True)
-    ref = v(stem + "_xyz", "1 2 3", None)
+    # a sourced value: only those become properties
+    ref = v(stem + "_xyz", "1 2 3", "M1")
     name = ref.removeprefix("${").removesuffix("}")
     assert xacro.is_valid_name(name) and not name.startswith("__"), name
     # two stems made equal by sanitising keep their own values
-    other = v(stem.replace("-", ".") + "_xyz", "4 5 6", None) if "-" in stem else None
+    other = v(stem.replace("-", ".") + "_xyz", "4 5 6", "M2") if "-" in stem else None
     assert other is None or other != ref

@@ -25,6 +25,8 @@ def project(tmp_path: Path) -> Path:
     """The committed example (package, control evidence and report) copied: check passes on it."""
     shutil.copytree(ROOT / "specs", tmp_path / "specs")
     shutil.copytree(ROOT / PKG, tmp_path / PKG, symlinks=True)
+    moveit = "generated/warehouse_arm_moveit_config"
+    shutil.copytree(ROOT / moveit, tmp_path / moveit, symlinks=True)
     return tmp_path
 
 

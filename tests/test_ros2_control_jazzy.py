@@ -270,10 +270,13 @@ def test_controller_claims_per_type(
 
 
 # -- specs: validate refuses what Jazzy refuses; generate never writes it ------------------
+_ELBOW_LIMIT = (
+    "    axis: +y\n    limit: {lower: -150 deg, upper: 150 deg, velocity: 120 deg/s, effort: 20 N*m, source: M21,\n"
+    '            acceleration: {value: 240 deg/s^2, source: "A1: chosen limit, max speed (M21) reached in 0.5 s"}}\n'
+)
 MIMIC_ELBOW = plant(
-    "    axis: +y\n    limit: {lower: -150 deg, upper: 150 deg, velocity: 120 deg/s, effort: 20 N*m, source: M21}\n",
-    "    axis: +y\n    limit: {lower: -150 deg, upper: 150 deg, velocity: 120 deg/s, effort: 20 N*m, source: M21}\n"
-    "    mimic: {joint: shoulder_lift_joint, multiplier: -1, offset: {value: 10 deg, source: M21}}\n",
+    _ELBOW_LIMIT,
+    _ELBOW_LIMIT + "    mimic: {joint: shoulder_lift_joint, multiplier: -1, offset: {value: 10 deg, source: M21}}\n",
 )
 ELBOW_CTRL = (
     '    - {name: elbow_joint, command: [position], state: [position, velocity], on_limit: reject, source: "C04, C06"}'

@@ -118,7 +118,7 @@ def test_urdf_mismatch_names_field_values_and_line() -> None:
     )
     assert files[URDF] != FILES[URDF]
     [f] = urdf_roundtrip(files, ROBOT, Path("/pkg"))
-    assert "joint:elbow_joint/axis: model (0.0, 1.0, 0.0), URDF [0., 0., 1.]" in f.message
+    assert "joint:elbow_joint/axis: model (0.0, 1.0, 0.0), URDF (0.0, 0.0, 1.0)" in f.message
     line = next(i for i, t in enumerate(files[URDF].splitlines(), 1) if '<joint name="elbow_joint"' in t)
     assert f.where.line == line and f.where.file == "/pkg/urdf/warehouse_arm.urdf"
 

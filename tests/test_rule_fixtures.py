@@ -38,10 +38,12 @@ def _findings(code: str, main: Path) -> list[str]:
     stem = main.with_suffix("")
     srdf = stem.with_suffix(".srdf")
     controllers = Path(f"{stem}.controllers.yaml")
+    moveit = Path(f"{stem}.moveit")  # a MoveIt config folder (MOVEIT rules)
     options = Options(
         srdf=srdf if srdf.is_file() else None,
         controllers=controllers if controllers.is_file() else None,
         package_paths=(main.parent,),
+        moveit_config=moveit if moveit.is_dir() else None,
     )
     robot, _ = load_description(main, options)
     # a message that cites another place ("first at <file>:3:1") names the fixture by its

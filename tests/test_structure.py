@@ -113,7 +113,9 @@ def test_joint_type_tuples_only_in_the_model() -> None:
     offenders = [
         hit
         for path in _modules()
-        if path != PACKAGE / "model.py"
+        # the read-back reader of proof 2 is independent of the model on purpose (it is the
+        # parser that checks what the model wrote), so it spells urdfdom's joint types itself
+        if path not in (PACKAGE / "model.py", PACKAGE / "readers" / "urdf_readback.py")
         for hit in _joint_type_literals(path.read_text(encoding="utf-8"), str(path.relative_to(PACKAGE.parent)))
     ]
     assert offenders == []

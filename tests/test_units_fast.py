@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from descgen import units
+from descgen import cache_dir, units
 
 NUMBERS = ["0", "-0", "1", "300", "-90", "0.175", "19.1", "1e-3", "2.5E+2", "+7", "123456789012345", "0.1"]
 
@@ -49,7 +49,8 @@ def test_the_factor_table_is_pints(unit: str) -> None:
         ("1 Hz", "angular_velocity"),
         ("3", "length"),  # bare number text
         ("1,5 m", "length"),  # comma
-        ("300 mm / 2", "length"),  # arithmetic
+        ("(300 mm) / 2", "length"),  # parentheses (plain arithmetic: tests/test_units_expressions.py)
+        ("0123 mm", "length"),  # Python's tokenizer reads 0 and 123: pint says 0 mm
         ("1" * 41 + " mm", "length"),  # too many digits
         ("1e999 m", "length"),  # not finite
         ("300" + " " * 300 + "mm", "length"),  # too long
@@ -72,7 +73,7 @@ def test_anything_else_is_left_to_pint(text: str, kind: str, monkeypatch: pytest
 def test_the_registry_from_the_cache_converts_as_a_fresh_one(tmp_path, monkeypatch: pytest.MonkeyPatch) -> None:
     import pint
 
-    monkeypatch.setenv(units.CACHE_ENV, str(tmp_path))
+    monkeypatch.setenv(cache_dir.CACHE_ENV, str(tmp_path))
     folder = units._cache_folder()
     assert folder is not None and folder.parent == tmp_path
     first = pint.UnitRegistry(cache_folder=folder)  # writes the cache
@@ -85,5 +86,5 @@ def test_the_registry_from_the_cache_converts_as_a_fresh_one(tmp_path, monkeypat
 
 
 def test_caching_can_be_switched_off(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setenv(units.CACHE_ENV, "")
+    monkeypatch.setenv(cache_dir.CACHE_ENV, "")
     assert units._cache_folder() is None

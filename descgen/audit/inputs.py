@@ -26,6 +26,7 @@ class Options:
     xacro_args: Mapping[str, str] = field(default_factory=dict)
     package_paths: Sequence[Path] = ()
     trust_xacro: bool = False  # expand with xacro's own evaluator (runs the file's Python)
+    moveit_config: Path | None = None  # a MoveIt config package (MOVEIT rules; descgen/audit/moveit_config.py)
 
 
 def kind_of(path: Path) -> str:
@@ -64,6 +65,19 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
             data = read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
         robot, found = read_urdf_text(data, display, sources)
+    robot, more = with_given_files(robot, options)
+    found += more
+    if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
+        return robot, found
+    status, files = mesh_paths.mesh_status(robot, path, options.package_paths)
+    resolved = tuple((name, str(p)) for name, p in files.items())
+    return dataclasses.replace(robot, mesh_status=tuple(status.items()), mesh_files=resolved), found
+
+
+def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Finding]]:
+    """``robot`` with the SRDF, controllers YAML and MoveIt config named on the command line in
+    place of its own, and what their readers reported."""
+    found: list[Finding] = []
     if options.srdf is not None:
         semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
         found += more
@@ -77,11 +91,14 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
         robot = dataclasses.replace(
             robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
         )
-    if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
-        return robot, found
-    status, files = mesh_paths.mesh_status(robot, path, options.package_paths)
-    resolved = tuple((name, str(p)) for name, p in files.items())
-    return dataclasses.replace(robot, mesh_status=tuple(status.items()), mesh_files=resolved), found
+    if options.moveit_config is not None:  # its SRDF and ros2_controllers.yaml only when not given
+        from .moveit_config import attach
+
+        robot, more = attach(
+            robot, options.moveit_config, read_srdf=options.srdf is None, read_controllers=options.controllers is None
+        )
+        found += more
+    return robot, found
 
 
 def _read(path: Path, what: str) -> bytes:

@@ -16,7 +16,7 @@ from ..codes import CODES
 from ..findings import Finding, Severity, Where
 from ..model import Robot
 
-CATEGORIES = ("TOPO", "NAME", "UNIT", "INER", "GEOM", "JOINT", "POSE", "SRDF", "CTRL", "FRAME", "TIME")
+CATEGORIES = ("TOPO", "NAME", "UNIT", "INER", "GEOM", "JOINT", "POSE", "SRDF", "CTRL", "FRAME", "TIME", "MOVEIT")
 _CODE = re.compile(rf"^({'|'.join(CATEGORIES)})\d{{3}}$")
 _HEADINGS = ("## What it does", "## Why is this bad?")
 

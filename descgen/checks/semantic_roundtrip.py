@@ -23,6 +23,14 @@ def _f(text: str | None) -> float | None:
         return math.nan
 
 
+def _values(text: str | None) -> float | list[float] | None:
+    """One number, or the list a planar/floating joint's value is (srdfdom splits on space)."""
+    parts = (text or "").split()
+    if len(parts) < 2:
+        return _f(text)
+    return [v if (v := _f(p)) is not None else math.nan for p in parts]
+
+
 def _same(a: Any, b: Any) -> bool:
     if (
         isinstance(a, float | int)
@@ -93,8 +101,8 @@ def srdf_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> list[Fin
         if e is not None:
             d.eq(
                 f"group_state:{s.name}/values",
-                dict(s.values),
-                {j.get("name"): _f(j.get("value")) for j in e.findall("joint")},
+                dict(s.values) | {n: list(v) for n, v in s.multi},
+                {j.get("name"): _values(j.get("value")) for j in e.findall("joint")},
                 line_of(e),
             )
     d.eq(

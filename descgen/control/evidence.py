@@ -25,9 +25,14 @@ def evidence_folder(package: Path, plant: str, faults: object) -> Path:
     return Path(tempfile.mkdtemp(prefix="descgen-control-"))
 
 
-def write_evidence(out: Outcome, folder: Path, robot: Robot, plots: bool = True) -> list[str]:
+def write_evidence(
+    out: Outcome, folder: Path, robot: Robot, plots: bool = True, package: Path | None = None
+) -> list[str]:
     """lifecycle.jsonl/.md, interfaces.md, desired_vs_measured.csv, plots, MCAP, verdict.json.
-    ``plots=False``: all but the plots (``descgen check`` compares their data, not their bytes)."""
+    ``plots=False``: all but the plots (``descgen check`` compares their data, not their bytes).
+    ``package``: the package the run loaded; verdict.json then records the hash of the run's
+    inputs and of the files written, so ``check`` can take them without running again
+    (evidence_check.reuse_record). verdict.json is written last, when every file it vouches for is."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:  # a file in the way, no permission
@@ -80,10 +85,16 @@ def write_evidence(out: Outcome, folder: Path, robot: Robot, plots: bool = True)
     for t, name, d, c, m in out.rows:
         w.writerow([f"{t:.3f}", name, f"{d:.9g}", f"{c:.9g}", f"{m:.9g}", f"{d - m:.9g}"])
     put("desired_vs_measured.csv", buf.getvalue())
-    put("verdict.json", json.dumps(out.verdict(), indent=2) + "\n")
+    verdict = out.verdict()
     if plots:
         written += _plots(out, folder)
     written += _recording(out, folder)
+    if package is not None:
+        from .evidence_check import reuse_record
+
+        record = reuse_record(folder, package, robot, verdict)
+        verdict = {**verdict, **({} if record is None else {"reuse": record})}
+    put("verdict.json", json.dumps(verdict, indent=2) + "\n")
     return written
 
 

@@ -8,6 +8,13 @@ another libm is not "stale"), the lifecycle and interface tables as text, and th
 the MCAP recording decoded. PNG bytes are not compared: they depend on matplotlib's version
 and fonts, and what each plot draws is its joint's columns of desired_vs_measured.csv, which
 are compared; every plot the run makes must exist.
+
+The run imports rosbags and takes about half a second, so ``verdict.json`` also records (key
+``reuse``, see descgen/evidence_hash.py) the hash of the run's inputs (the record, the
+trajectory file, the package's files outside evidence/, descgen's code and the libraries it
+uses) and the hash of what was written (every data file, the recording's bytes, the plot
+names). When both match, ``check`` takes the evidence as current without running it; else it
+runs and compares as described above.
 """
 
 from __future__ import annotations
@@ -21,6 +28,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+from .. import evidence_hash
 from ..findings import Finding, InputError, Where
 from ..model import Robot
 from ..report import printable
@@ -28,6 +36,11 @@ from ..safeio import MAX_DESCRIPTION_BYTES, read_bounded
 from .system import FAULT_KINDS, Plant
 
 RECORD_KEY = "run"
+REUSE_KEY = "reuse"  # the input and content hashes (descgen/evidence_hash.py); never compared
+_DATA = ("lifecycle.jsonl", "lifecycle.md", "interfaces.md", "desired_vs_measured.csv")
+# what the run's results depend on besides descgen: the recording's writer and its arrays, the
+# YAML and XML readers and xacro (the package's ros2_control block is expanded and read)
+_TOOLS = ("rosbags", "numpy", "PyYAML", "lxml", "xacro")
 _TEXT = ("lifecycle.md", "interfaces.md")  # renderings: compared as text
 _REL, _ABS = 1e-9, 1e-12
 
@@ -53,9 +66,70 @@ def _shown(path: Path, project: Path) -> str:
         return str(path.resolve())
 
 
-def check_evidence(package: Path, robot: Robot, spec_shown: str) -> list[Finding]:
+def _input_key(package: Path, robot: Robot, record: dict[str, Any]) -> str:
+    """The hash of everything the run and its files are a function of: the spec (the model's
+    limits and tolerances) and the generated package on disk (the run loads its ros2_control
+    block and controllers YAML)."""
+    path = Path(str(record.get("trajectory")))
+    if not path.is_absolute():
+        path = _project(package) / path
+    trajectory = evidence_hash.sha256(path.read_bytes()) if path.is_file() else "missing"
+    return evidence_hash.digest(
+        {
+            "what": "control evidence",
+            **evidence_hash.descgen_identity(),
+            "tools": evidence_hash.versions(*_TOOLS),
+            "spec": robot.spec_hash,
+            "record": record,
+            "trajectory": trajectory,
+            "package": evidence_hash.package_files(package, ("evidence/",)),
+        }
+    )
+
+
+def _content(folder: Path, verdict: dict[str, Any]) -> str:
+    """The evidence as written, as one text to hash: each data file's bytes, verdict.json's
+    data (its reuse record aside), the recording's files and the names of the plots."""
+    parts: dict[str, Any] = {
+        name: evidence_hash.sha256(read_bounded(folder / name, name, MAX_DESCRIPTION_BYTES)) for name in _DATA
+    }
+    parts["verdict.json"] = evidence_hash.digest({k: v for k, v in verdict.items() if k != REUSE_KEY})
+    parts["control_run/"] = evidence_hash.package_files(folder / "control_run")
+    parts["plots"] = sorted(p.name for p in folder.glob("*.png"))
+    return json.dumps(parts, sort_keys=True)
+
+
+def reuse_record(folder: Path, package: Path, robot: Robot, verdict: dict[str, Any]) -> dict[str, str] | None:
+    """What verdict.json records for reuse after a run wrote ``folder`` (None: no record)."""
+    record = verdict.get(RECORD_KEY)
+    if not isinstance(record, dict):
+        return None
+    content = evidence_hash.sha256(_content(folder, verdict))
+    return {"input-sha256": _input_key(package, robot, record), "content-sha256": content}
+
+
+def _reusable(folder: Path, package: Path, robot: Robot, committed: dict[str, Any], record: dict[str, Any]) -> bool:
+    """True when the committed evidence records the inputs it has today and is what was
+    written with them, and every plot the run draws is there (as the full check requires)."""
+    reuse = committed.get(REUSE_KEY)
+    tracking = committed.get("tracking")
+    if not isinstance(reuse, dict) or not isinstance(tracking, dict):
+        return False
+    if sorted(p.name for p in folder.glob("*.png")) != sorted(f"{joint}.png" for joint in tracking):
+        return False  # a missing plot, or one of a joint the run does not track: the full check says which
+    try:
+        key, content = _input_key(package, robot, record), _content(folder, committed)
+    except (InputError, OSError, ValueError):
+        return False
+    found = (str(reuse.get("input-sha256")), str(reuse.get("content-sha256")))
+    return evidence_hash.reusable(found, key, content)
+
+
+def check_evidence(package: Path, robot: Robot, spec_shown: str, refresh: bool = False) -> list[Finding]:
     """Findings for committed control evidence that its recorded run no longer reproduces.
-    A package without ``evidence/verdict.json`` has no control evidence: nothing to check."""
+    A package without ``evidence/verdict.json`` has no control evidence: nothing to check.
+    ``refresh`` (``descgen report``): evidence the run was repeated for and found current gets
+    its reuse record rewritten for today's inputs (its data is left as it is)."""
     folder = package / "evidence"
     verdict = folder / "verdict.json"
     if not verdict.is_file():
@@ -70,13 +144,22 @@ def check_evidence(package: Path, robot: Robot, spec_shown: str) -> list[Finding
     if plant is None or not isinstance(record, dict):
         return [stale("verdict.json", "does not record the run that produced it (trajectory, duration, plant)")]
     stale.record = record
+    if _reusable(folder, package, robot, committed, record):
+        return []  # run from these very inputs, and unchanged since
     with tempfile.TemporaryDirectory(prefix="descgen-evidence-") as tmp:
         try:
             fresh, expected = _rerun(package, robot, record, plant, Path(tmp))
         except InputError as exc:
             first = exc.findings[0].message if exc.findings else "the run failed"
             return [stale("verdict.json", f"cannot be reproduced: {first}")]
-        return _compare(folder, Path(tmp), fresh, expected, stale)
+        found = _compare(folder, Path(tmp), fresh, expected, stale)
+    if refresh and not found:
+        record = reuse_record(folder, package, robot, committed)
+        verdict.write_text(
+            json.dumps({**{k: v for k, v in committed.items() if k != REUSE_KEY}, REUSE_KEY: record}, indent=2) + "\n",
+            encoding="utf-8",
+        )
+    return found
 
 
 def _plant(record: object) -> Plant | None:
@@ -181,7 +264,12 @@ def _same_file(mine: Path, theirs: Path, name: str) -> bool:
         return _same_rows(list(csv.reader(io.StringIO(a))), list(csv.reader(io.StringIO(b))))
     if name.endswith(".jsonl"):
         return _same_rows([json.loads(x) for x in a.splitlines()], [json.loads(x) for x in b.splitlines()])
-    return _same(json.loads(a), json.loads(b))
+    return _same(_data(json.loads(a)), _data(json.loads(b)))
+
+
+def _data(verdict: object) -> object:
+    """verdict.json without its reuse record (hashes of this machine's bytes, not data)."""
+    return {k: v for k, v in verdict.items() if k != REUSE_KEY} if isinstance(verdict, dict) else verdict
 
 
 def _same_rows(a: list[Any], b: list[Any]) -> bool:

@@ -21,7 +21,8 @@ from ..readers.srdf import read_srdf_text
 from ..readers.urdf import read_urdf_text
 from ..render import render_package
 from ..spec.load import load_spec_text
-from . import passthrough
+from ..spec.models import CALIBRATABLE
+from . import control, passthrough
 
 TOL = 1e-12
 _IGNORED = {"where", "source", "part", "description", "robot_name"}  # provenance, not robot data
@@ -79,8 +80,12 @@ def _finding(message: str, where: Where) -> Finding:
     )
 
 
-def prove(spec_text: str, ours: m.Robot, spec_file: str) -> list[Finding]:
+def prove(spec_text: str, ours: m.Robot, spec_file: str, ctl: control.Imported | None = None) -> list[Finding]:
     """Differences between the description and what its spec generates (empty: proven).
+
+    With ``ctl``, its ``<ros2_control>`` blocks are compared as ros2_control reads them
+    (:func:`control.block_differences`) and the imported controllers with the generated
+    config/ros2_controllers.yaml (:func:`control.controllers_differences`).
 
     InputError when the spec does not load: the description's own defects (a missing
     limit, an unreadable value) make the spec fail validate at the same elements."""
@@ -93,7 +98,12 @@ def prove(spec_text: str, ours: m.Robot, spec_file: str) -> list[Finding]:
     messages = model_differences(dataclasses.replace(ours, ros2_control=None), back)
     found = [_finding(msg, where) for msg in messages]
     found += [dataclasses.replace(f, code="IMP001") for f in yourdfpy_compare(ours, urdf, urdf_name)]
-    found += [_finding(msg, where) for msg in passthrough_differences(ours.passthrough, urdf)]
+    imported = ctl is not None and ctl.data is not None
+    found += [_finding(msg, where) for msg in passthrough_differences(ours.passthrough, urdf, imported)]
+    if ctl is not None and ctl.data is not None:
+        found += [_finding(msg, where) for msg in _control_differences(ctl, ours, urdf)]
+        if ctl.controllers is not None and ctl.controllers.names:
+            found += [_finding(msg, Where("config/ros2_controllers.yaml")) for msg in _controllers(ctl, ours, files)]
     if ours.semantic is not None:
         srdf_name = f"srdf/{loaded.robot.name}.srdf"
         if srdf_name not in files:
@@ -112,10 +122,31 @@ def _own_pairs(sem: m.Semantic, n: int) -> m.Semantic:
     return dataclasses.replace(sem, disabled_collisions=pairs[len(pairs) - n :] if n else ())
 
 
-def passthrough_differences(kept: tuple[str, ...], urdf: str) -> list[str]:
-    """Each kept element must come back, in order, as the same XML data."""
-    root = etree.fromstring(urdf.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-    back = [e for e in root if isinstance(e.tag, str) and e.tag not in passthrough.OWN_TAGS]
+def _parse(text: str) -> etree._Element:
+    return etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+
+
+def _control_differences(ctl: control.Imported, ours: m.Robot, urdf: str) -> list[str]:
+    original = [_parse(x) for x in ctl.blocks]
+    return control.block_differences(original, _parse(urdf).findall("ros2_control"), ours)
+
+
+def _controllers(ctl: control.Imported, ours: m.Robot, files: dict[str, str]) -> list[str]:
+    c = ctl.controllers
+    assert c is not None
+    written = files.get("config/ros2_controllers.yaml")
+    if written is None:
+        return ["config/ros2_controllers.yaml is not generated"]
+    diff_drive = {x["name"] for x in c.data if x["type"] in CALIBRATABLE}
+    return control.controllers_differences(c.text, written, c, diff_drive)
+
+
+def passthrough_differences(kept: tuple[str, ...], urdf: str, control_imported: bool = False) -> list[str]:
+    """Each kept element must come back, in order, as the same XML data (the spec's own
+    ``<ros2_control>`` blocks, when imported, are not pass-through)."""
+    root = _parse(urdf)
+    own = passthrough.OWN_TAGS | ({"ros2_control"} if control_imported else set())
+    back = [e for e in root if isinstance(e.tag, str) and e.tag not in own]
     if len(back) != len(kept):
         return [f"{len(kept)} pass-through elements in the description, {len(back)} in the written URDF"]
     return [

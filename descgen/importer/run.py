@@ -24,8 +24,8 @@ from ..readers.urdf import element_sources, parse_xml, read_urdf_text
 from ..readers.xacro_file import expand_located
 from ..safeio import check_file, read_bounded
 from ..xmlcompare import line_of
-from . import passthrough
-from .packages import package_paths
+from . import control, passthrough
+from .packages import package_name, package_paths, with_package_name
 from .poses import known_poses
 from .quantity import Units
 from .spec import SpecWriter, number, source_name
@@ -47,6 +47,7 @@ class Imported:
     report: list[Finding] = field(default_factory=list)  # what went to pass-through, what was not kept
     differences: list[Finding] = field(default_factory=list)  # the round trip; empty: proven
     kept: list[passthrough.Kept] = field(default_factory=list)
+    control: control.Imported = field(default_factory=lambda: control.Imported())  # ros2_control: and controllers
     structured: bool = False  # parts: or sensors: written
     spec_name: str = "robot.yaml"
 
@@ -115,9 +116,38 @@ def _no_empty_materials(robot: m.Robot) -> tuple[m.Link, ...]:
     )
 
 
+def _continuous_limits(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+    """A continuous joint's ``lower``/``upper`` are left out, and each is reported (IMP026).
+
+    urdfdom reads them, but nothing acts on them: ros2_control's joint_limits marks the joint
+    angle_wraparound and ignores them, MoveIt's RevoluteJointModel::setContinuous unbounds the
+    variable after reading them (moveit_core revolute_joint_model.cpp, jazzy); descgen's URDF does
+    not write them. Kept in the spec they would read as limits the robot does not have."""
+    joints, report = [], []
+    for j in robot.joints:
+        lm = j.limit
+        if j.type != "continuous" or lm is None or (lm.lower is None and lm.upper is None):
+            joints.append(j)
+            continue
+        joints.append(dataclasses.replace(j, limit=dataclasses.replace(lm, lower=None, upper=None)))
+        shown = ", ".join(f"{k}={v:g} rad" for k, v in (("lower", lm.lower), ("upper", lm.upper)) if v is not None)
+        report.append(
+            _finding(
+                "IMP026",
+                "info",
+                f"continuous joint '{j.name}' limit {shown} is left out: no consumer applies it to a continuous joint",
+                "nothing to do; make the joint revolute if it really stops at these angles",
+                f"joint:{j.name}",
+                lm.where if lm.where.file else j.where,
+            )
+        )
+    return dataclasses.replace(robot, joints=tuple(joints)), report
+
+
 def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
-    """Group-state values of multi-DOF joints are not numbers the spec holds (nor checks):
-    each one left out is reported (IMP011), with the value as the SRDF writes it."""
+    """Group-state values the spec cannot hold (several numbers for a joint that is no planar or
+    floating virtual joint, or unreadable ones): each one left out is reported (IMP011), with
+    the value as the SRDF writes it. A virtual joint's list is kept (``GroupState.multi``)."""
     sem = robot.semantic
     assert sem is not None
     dropped = [(s, n) for s in sem.states for n, v in s.values if not math.isfinite(v)]
@@ -133,7 +163,7 @@ def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
                     "IMP011",
                     "warning",
                     f"group state '{s.name}' joint '{n}' value '{raw}' is not kept: the spec holds one number per "
-                    "joint (a multi-DOF or unreadable value)"
+                    "joint, or a list for a planar/floating virtual joint (this one is neither, or unreadable)"
                     + ("" if _finite(s) else "; the state has no other value, so it is left out"),
                     "the generated SRDF lacks this value; add it to the state by hand if MoveIt needs it",
                     f"group_state:{s.name}",
@@ -150,7 +180,7 @@ def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
 
 
 def _finite(state: m.GroupState) -> bool:
-    return any(math.isfinite(v) for _, v in state.values)
+    return bool(state.multi) or any(math.isfinite(v) for _, v in state.values)
 
 
 def _quoted(text: str) -> str:
@@ -179,11 +209,25 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Import
     robot = dataclasses.replace(
         robot, materials=_inline_materials(root, robot, shown), links=_no_empty_materials(robot)
     )
-    report: list[Finding] = []
+    robot, report = _continuous_limits(robot)
     if opts.description.srdf is not None:
         robot, _ = _semantic(opts.description.srdf, robot)
-        robot, report = _finite_states(robot, opts.description.srdf)
+        robot, more_states = _finite_states(robot, opts.description.srdf)
+        report += more_states
     kept, refused = passthrough.collect(root, located.get)
+    writer = SpecWriter(opts.units, source_name)
+    ctl = control.import_control(
+        root,
+        robot,
+        writer,
+        control.locate_source(located.get, shown, source_name),
+        lambda e: located.get(e) or Where(shown, line_of(e)),
+        opts.description.controllers,
+        dict(opts.description.xacro_args),
+    )
+    if ctl.data is not None:  # the blocks are in ros2_control:, not in pass-through
+        kept = [k for k in kept if k.tag != "ros2_control"]
+    report += ctl.report
     robot = dataclasses.replace(robot, passthrough=tuple(k.xml for k in kept), ros2_control=None)
     report += [
         _finding(
@@ -207,18 +251,28 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Import
         )
         for k in refused
     ]
-    report += _not_imported(root, opts.description, shown, located)
-    writer = SpecWriter(opts.units, source_name)
+    report += _not_imported(root, opts.description, shown, located, ctl.data is not None)
     structure = recognise(robot, writer) if structured else Structure()
-    data_ = spec_data(robot, writer, kept, shown, structure)
+    data_ = spec_data(robot, writer, kept, shown, structure, ctl.data)
     folders, more = package_paths(robot, path, Path(opts.spec_name), opts.description.package_paths)
     report += more
     if folders:
         data_ = _with_package_paths(data_, folders)
+    named, why = package_name(robot, Where(opts.spec_name))
+    report += why
+    if named is not None:
+        data_ = with_package_name(data_, named)
     text = dump(data_, shown, opts.units)
     structured = bool(structure.parts or structure.sensors)
     return Imported(
-        text, robot, audit(path, opts.description), report, kept=kept, structured=structured, spec_name=opts.spec_name
+        text,
+        robot,
+        audit(path, opts.description),
+        report,
+        kept=kept,
+        control=ctl,
+        structured=structured,
+        spec_name=opts.spec_name,
     )
 
 
@@ -229,7 +283,11 @@ def _with_package_paths(data: dict[str, Any], folders: list[str]) -> dict[str, A
 
 
 def _not_imported(
-    root: etree._Element, options: Options, shown: str, located: dict[etree._Element, Where]
+    root: etree._Element,
+    options: Options,
+    shown: str,
+    located: dict[etree._Element, Where],
+    control_imported: bool = False,
 ) -> list[Finding]:
     """Elements inside links and joints that no reader keeps: said, never silently lost."""
     known = {
@@ -261,7 +319,7 @@ def _not_imported(
                             located.get(c) or Where(shown, line_of(c)),
                         )
                     )
-    if options.controllers is not None:
+    if options.controllers is not None and not control_imported:
         out.append(
             _finding(
                 "IMP005",
@@ -277,7 +335,12 @@ def _not_imported(
 
 
 def spec_data(
-    robot: m.Robot, w: SpecWriter, kept: list[passthrough.Kept], shown: str, structure: Structure | None = None
+    robot: m.Robot,
+    w: SpecWriter,
+    kept: list[passthrough.Kept],
+    shown: str,
+    structure: Structure | None = None,
+    ros2_control: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     st = structure or Structure()
     materials = [w.material(mt) for mt in robot.materials]
@@ -297,6 +360,8 @@ def spec_data(
         out["parts"] = st.parts
     if st.sensors:
         out["sensors"] = st.sensors
+    if ros2_control is not None:
+        out["ros2_control"] = ros2_control
     if robot.semantic is not None:
         from .semantic import semantic_data
 
@@ -370,7 +435,7 @@ def _proved(imported: Imported) -> Outcome:
     from .roundtrip import prove
 
     try:
-        imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name)
+        imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name, imported.control)
     except InputError as exc:
         invalid = [
             dataclasses.replace(

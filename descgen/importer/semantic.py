@@ -8,6 +8,7 @@ from typing import Any
 
 from .. import model as m
 from ..spec.convert import POSITION
+from ..spec.semantic import VARIABLES
 from .spec import SpecWriter
 
 
@@ -15,6 +16,24 @@ def _value(robot: m.Robot, joint: str, value: float, w: SpecWriter) -> str | int
     j = robot.joint(joint)
     kind = POSITION.get(j.type, ("angle", ""))[0] if j is not None else "angle"
     return w.q(value, kind)
+
+
+def _type(sem: m.Semantic, joint: str) -> str:
+    return next((v.type for v in sem.virtual_joints if v.name == joint), "")
+
+
+def _values(jtype: str, values: tuple[float, ...], w: SpecWriter) -> list[str | int | float]:
+    """A planar/floating joint's variables in MoveIt's order: lengths and theta with units,
+    the quaternion as plain numbers (a count that fits no type is written as the SRDF has it,
+    and validate reports it: SPEC125)."""
+    kinds = [k for _, k in VARIABLES.get(jtype, ())]
+    if len(kinds) != len(values):
+        kinds = ["" for _ in values]
+    return [w.q(v, k) if k else _plain(v) for v, k in zip(values, kinds, strict=True)]
+
+
+def _plain(v: float) -> int | float:
+    return int(v) if v.is_integer() and abs(v) < 2**53 else v
 
 
 def semantic_data(robot: m.Robot, w: SpecWriter) -> dict[str, Any]:
@@ -48,8 +67,9 @@ def semantic_data(robot: m.Robot, w: SpecWriter) -> dict[str, Any]:
                 "joints": {
                     n: {"value": _value(robot, n, v, w), "source": w.source_of(s.where)}
                     for n, v in s.values
-                    if math.isfinite(v)  # a multi-DOF value (virtual joint): the spec holds none
-                },
+                    if math.isfinite(v)  # an unreadable value: reported (IMP011), not kept
+                }
+                | {n: {"value": _values(_type(sem, n), vs, w), "source": w.source_of(s.where)} for n, vs in s.multi},
             }
             for s in sem.states
         ]

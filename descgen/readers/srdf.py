@@ -33,6 +33,7 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
     states = []
     for s in root.findall("group_state"):
         values = []
+        multi: list[tuple[str, tuple[float, ...]]] = []
         for j in s.findall("joint"):
             raw = j.get("value", "")
             try:
@@ -63,8 +64,11 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
                         where(j),
                     )
                 )
+            if len(numbers) > 1 and j.get("name") in multi_dof:
+                multi.append((j.get("name", ""), tuple(numbers)))  # every variable, in MoveIt's order
+                continue
             values.append((j.get("name", ""), numbers[0] if len(numbers) == 1 else math.nan))
-        states.append(m.GroupState(s.get("name", ""), s.get("group", ""), tuple(values), where(s)))
+        states.append(m.GroupState(s.get("name", ""), s.get("group", ""), tuple(values), where(s), tuple(multi)))
     semantic = m.Semantic(
         groups,
         tuple(states),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -10,6 +11,7 @@ import jinja2
 from jinja2.exceptions import SecurityError
 from jinja2.sandbox import ImmutableSandboxedEnvironment
 
+from ..cache_dir import cache_root
 from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
@@ -21,6 +23,23 @@ XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
 
 def default_templates() -> Path:
     return Path(str(resources.files("descgen.templates")))
+
+
+@functools.cache
+def _bytecode_cache() -> jinja2.BytecodeCache | None:
+    """Compiled templates kept in the user cache folder (descgen/cache_dir.py), like Python's
+    own __pycache__: compiling the 40-odd templates is half of a warm ``check``. jinja2 keys an
+    entry by the template's name and file and recompiles when the source's checksum differs;
+    None (compile every time) when caching is off or the folder cannot be made."""
+    root = cache_root()
+    if root is None:
+        return None
+    folder = root / f"jinja2-{jinja2.__version__}"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return jinja2.FileSystemBytecodeCache(str(folder))
 
 
 def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja2.Environment:
@@ -36,6 +55,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     make = ImmutableSandboxedEnvironment if sandboxed else jinja2.Environment
     env = make(
         loader=jinja2.ChoiceLoader(loaders),
+        bytecode_cache=_bytecode_cache(),
         autoescape=jinja2.select_autoescape(enabled_extensions=XML_TEMPLATES, default_for_string=False, default=False),
         undefined=jinja2.StrictUndefined,
         keep_trailing_newline=True,
@@ -73,6 +93,7 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append(("evidence/known_poses.md", "known_poses.md.j2", False))
     if robot.semantic is not None and robot.semantic.matrix is not None:
         files.append(("evidence/collision_matrix.md", "collision_matrix.md.j2", False))
+        files.append(("evidence/sweep.md", "sweep.md.j2", False))  # descgen/sweep/evidence.py
     files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
     return files
 
@@ -92,6 +113,10 @@ def render_package(
     contexts = {False: context.build(robot, xacro=False), True: context.build(robot, xacro=True)}
     for ctx in contexts.values():
         ctx["package"]["install_dirs"] = install_dirs(robot)
+    if robot.semantic is not None and robot.semantic.matrix is not None:
+        from ..sweep import evidence as sweep_evidence  # pinocchio only when no sweep is memoised
+
+        contexts[False]["sweep"] = sweep_evidence.context(robot)
     out: dict[str, str] = {}
     for path, template, xacro in outputs(robot):
         body = _render(env, template, contexts[xacro], templates)

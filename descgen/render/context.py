@@ -10,15 +10,11 @@ from markupsafe import Markup
 from .. import derive, display
 from ..importer.passthrough import for_xacro
 from ..mesh_paths import other_packages
+from ..mesh_paths import package_name as package_name  # the one definition, re-exported
 from ..model import CollisionMatrix, DisabledPair, Robot
 from .control_blocks import control_blocks, control_depends
 from .formatting import num, vec, xacro_text
 from .views import Values, items
-
-
-def package_name(robot: Robot) -> str:
-    return f"{robot.name}_description"
-
 
 # exec_depends of what the launch files start and what controller_manager loads
 _BASE_DEPENDS = ["joint_state_publisher_gui", "launch", "launch_ros", "robot_state_publisher", "rviz2", "xacro"]

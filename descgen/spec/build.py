@@ -11,6 +11,7 @@ position of the value, in :attr:`Builder.findings`.
 from __future__ import annotations
 
 from dataclasses import replace
+from pathlib import Path
 
 from .. import model as m
 from .. import units
@@ -21,16 +22,19 @@ from . import parts, sensors
 from .convert import Converter
 from .joints import joint
 from .links import link
+from .moveit import moveit
 from .ros2_control import ros2_control
 from .rules import duplicate_semantics
 from .semantic import complete_states, known_pose, semantic
 
 
 class Builder:
-    def __init__(self, doc: Document, spec: s.RobotSpec, ranges: dict[str, units.Range]) -> None:
+    def __init__(
+        self, doc: Document, spec: s.RobotSpec, ranges: dict[str, units.Range], package_paths: tuple[Path, ...] = ()
+    ) -> None:
         self.doc = doc
         self.spec = spec
-        self.conv = Converter(doc, ranges)
+        self.conv = Converter(doc, ranges, package_paths=package_paths)
 
     @property
     def findings(self) -> list[Finding]:
@@ -51,7 +55,8 @@ class Builder:
         # every joint exists now: values given per joint (poses, initial positions) take its unit
         conv.joint_types = {j.name: j.type for j in joints}
         rc = ros2_control(conv, spec.ros2_control, {lk.name for lk in links}) if spec.ros2_control else None
-        poses = tuple(known_pose(conv, kp, ("known_poses", i)) for i, kp in enumerate(spec.known_poses))
+        virtual = {v.name: v.type for v in spec.semantic.virtual_joints} if spec.semantic else {}
+        poses = tuple(known_pose(conv, kp, ("known_poses", i), virtual) for i, kp in enumerate(spec.known_poses))
         robot = m.Robot(
             spec.name,
             tuple(links),
@@ -65,7 +70,11 @@ class Builder:
             where=conv.where(()),
             source_file=self.doc.file,
             package=m.PackageInfo(
-                spec.package.version, spec.package.maintainer, spec.package.email, spec.package.license
+                spec.package.version,
+                spec.package.maintainer,
+                spec.package.email,
+                spec.package.license,
+                spec.package.name,
             ),
             external_frames=tuple(
                 m.ExternalFrame(e.parent, e.child, e.owner, e.static, conv.where(("frames", "external", i)))
@@ -77,8 +86,10 @@ class Builder:
             ),
             passthrough=tuple(p.xml for p in spec.passthrough),
         )
-        if spec.semantic is None:
-            return robot
-        conv.findings += duplicate_semantics(self.doc, spec.semantic)
-        with_semantic = replace(robot, semantic=semantic(conv, spec.semantic, poses))
-        return complete_states(with_semantic, spec.semantic)
+        if spec.semantic is not None:
+            conv.findings += duplicate_semantics(self.doc, spec.semantic)
+            with_semantic = replace(robot, semantic=semantic(conv, spec.semantic, poses))
+            robot = complete_states(with_semantic, spec.semantic)
+        if spec.moveit is not None:
+            robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
+        return robot

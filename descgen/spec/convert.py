@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from .. import units
@@ -24,6 +25,7 @@ POSITION = {
 }
 EFFORT = {"prismatic": ("force", "force")}
 VELOCITY = {"prismatic": ("linear_velocity", "linear_velocity")}
+ACCELERATION = {"prismatic": ("linear_acceleration", "linear_acceleration")}
 DAMPING = {"prismatic": "linear_damping"}
 FRICTION = {"prismatic": "force"}
 
@@ -36,6 +38,8 @@ class Converter:
     ranges: dict[str, units.Range]
     findings: list[Finding] = field(default_factory=list)
     joint_types: dict[str, str] = field(default_factory=dict)  # set once every joint is built
+    # --package-path: searched for package:// meshes after the spec's package_paths: (inertia from a mesh)
+    package_paths: tuple[Path, ...] = ()
 
     def where(self, path: Path_) -> Where:
         return self.doc.where(path)

@@ -103,9 +103,9 @@ _GIVE = "give inertia explicitly (from your CAD tool), or use a primitive"
 
 def _resolved(conv: Converter, name: str) -> mesh_paths.Resolved:
     """The mesh file as resolve_spec finds it: beside the spec, or package:// in the
-    spec's recorded package_paths (the command line's --package-path is not known here)."""
+    spec's recorded package_paths, then the command line's --package-path."""
     spec = Path(conv.doc.file)
     recorded = conv.doc.data.get("package_paths") if isinstance(conv.doc.data, dict) else None
     folders = [mesh_paths.spec_folder(spec, w) for w in recorded or [] if isinstance(w, str)]
     base = spec.resolve().parent
-    return mesh_paths.resolve(name, base, base, [f for f in folders if f is not None])
+    return mesh_paths.resolve(name, base, base, [*(f for f in folders if f is not None), *conv.package_paths])

@@ -6,7 +6,7 @@ from __future__ import annotations
 from .. import model as m
 from ..yamlsource import Path_
 from . import models as s
-from .convert import DAMPING, EFFORT, FRICTION, POSITION, VELOCITY, Converter
+from .convert import ACCELERATION, DAMPING, EFFORT, FRICTION, POSITION, VELOCITY, Converter
 from .geometry import pose
 from .sources import sources
 
@@ -48,6 +48,7 @@ def _limit(conv: Converter, body: s.JointBody, path: Path_) -> m.Limit | None:
     pos_kind, pos_role = POSITION.get(jt, ("angle", "joint_angle"))
     eff_kind, eff_role = EFFORT.get(jt, ("torque", "torque"))
     vel_kind, vel_role = VELOCITY.get(jt, ("angular_velocity", "angular_velocity"))
+    acc_kind, acc_role = ACCELERATION.get(jt, ("angular_acceleration", "angular_acceleration"))
     lp = (*path, "limit")
     lm = body.limit
     return m.Limit(
@@ -56,6 +57,7 @@ def _limit(conv: Converter, body: s.JointBody, path: Path_) -> m.Limit | None:
         conv.si(lm.effort, eff_kind, eff_role, (*lp, "effort")),
         conv.si(lm.velocity, vel_kind, vel_role, (*lp, "velocity")),
         conv.where(lp),
+        acceleration=conv.si(lm.acceleration, acc_kind, acc_role, (*lp, "acceleration")),
     )
 
 

@@ -23,7 +23,7 @@ from .errors import data_path, findings_from
 from .models import RobotSpec
 from .plausibility import ranges_from
 from .quantity import Measured
-from .rules import missing_sources
+from .rules import derived_package_name, missing_sources
 
 
 @dataclass(frozen=True)
@@ -83,8 +83,12 @@ def from_document(doc: Document, rules: bool = True, place: _Place | None = None
         problems += _rules_despite(exc, doc, ranges, place) if rules else []
         raise InputError(_ordered(_unique(problems))) from None
     robot, built = _build(doc, spec, ranges, place)
-    problems += built
-    findings = run_rules(robot, stage="input") if rules else []
+    problems += errors(built)
+    named = derived_package_name(doc, spec)
+    problems += errors(named)
+    findings = [f for f in named if f.severity != "error"]
+    findings += [f for f in built if f.severity != "error"]  # the builder's warnings (SPEC114)
+    findings += run_rules(robot, stage="input") if rules else []
     bad = _bad_paths(doc, built)
     if bad:  # a value the builder could not convert: rules judged a stand-in there
         findings = [f for f in findings if not _inside(f, doc, bad)]
@@ -97,7 +101,7 @@ def from_document(doc: Document, rules: bool = True, place: _Place | None = None
 def _build(
     doc: Document, spec: RobotSpec, ranges: dict[str, Range], place: _Place | None = None
 ) -> tuple[Robot, list[Finding]]:
-    builder = Builder(doc, spec, ranges)
+    builder = Builder(doc, spec, ranges, place.package_paths if place is not None else ())
     robot = builder.build()
     problems = list(builder.findings)
     if place is not None:  # before the rules, so they see the files (and a missing one is an input error)

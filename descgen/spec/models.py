@@ -23,7 +23,25 @@ from pydantic import (
     model_validator,
 )
 
-from .quantity import ZERO, ZERO_ANGLE, Angle, Frequency, InertiaQ, Length, Mass, Measured, Raw, Size, Tolerance, error
+from .quantity import (
+    ZERO,
+    ZERO_ANGLE,
+    Angle,
+    AngularVelocity,
+    Duration,
+    Frequency,
+    InertiaQ,
+    JointRaw,
+    Length,
+    LinearAcceleration,
+    LinearVelocity,
+    Mass,
+    Measured,
+    Raw,
+    Size,
+    Tolerance,
+    error,
+)
 
 NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
 Name = Annotated[str, StringConstraints(pattern=NAME_PATTERN, max_length=128)]
@@ -334,6 +352,9 @@ class LimitSpec(Base):
     upper: Raw | None = None
     effort: Raw
     velocity: Raw
+    # rad/s^2 (deg/s^2) or m/s^2; not in the URDF (it has no such attribute), written to MoveIt's
+    # joint_limits.yaml; required for the joints of planning groups when ``moveit:`` is set (SPEC110)
+    acceleration: Raw | None = None
     source: Source | None = None
 
 
@@ -644,7 +665,7 @@ class GroupStateSpec(Base):
     name: ElementName
     group: Name
     pose: Name | None = None  # take the joint values of a known pose
-    joints: dict[ElementName, Raw] = {}
+    joints: dict[ElementName, JointRaw] = {}  # a list for a planar/floating joint
 
     @model_validator(mode="after")
     def _values(self) -> GroupStateSpec:
@@ -708,7 +729,7 @@ class FrameMeasurementSpec(Base):
 
 class KnownPoseSpec(Base):
     name: Name
-    joints: dict[ElementName, Raw] = {}
+    joints: dict[ElementName, JointRaw] = {}  # a list for a planar/floating virtual joint (no FK)
     frames: list[FrameMeasurementSpec] = []
     source: Source | None = None
     description: Text | None = None
@@ -763,9 +784,56 @@ def _package_field(what: str, pattern: re.Pattern[str] | None, hint: str) -> tup
     return AfterValidator(check), Field(json_schema_extra=shown)
 
 
+# REP 144 (https://ros.org/reps/rep-0144.html), "a name must": lowercase alphanumerics and _
+# separators, starting with a letter; no two _ in a row; at least two characters.
+REP144_PATTERN = r"^[a-z](?:[a-z0-9]|_(?!_))+$"
+
+
+def rep144_problem(name: str) -> str | None:
+    """Why ``name`` is not a REP 144 package name, or None."""
+    if re.fullmatch(REP144_PATTERN, name):
+        return None
+    if not name[:1].islower() or not name[:1].isascii():
+        return "a package name starts with a lowercase letter"
+    if "__" in name:
+        return "a package name has no two '_' in a row"
+    if len(name) < 2:
+        return "a package name has at least two characters"
+    return "a package name holds only lowercase letters, digits and '_'"
+
+
+def suggest_package_name(name: str) -> str:
+    """A REP 144 name close to ``name``: lowercase, other characters as single '_', and
+    ``robot_`` in front of a name that does not start with a letter."""
+    text = re.sub(r"_+", "_", re.sub(r"[^a-z0-9]", "_", name.lower())).strip("_") or "robot"
+    return text if text[0].isalpha() and len(text) > 1 else f"robot_{text}"
+
+
+def _package_name(value: str) -> str:
+    why = rep144_problem(value)
+    if why is not None:
+        raise error(
+            "SPEC120",
+            f"package name {value!r} is not a ROS package name: {why} (REP 144)",
+            f"write e.g. name: {suggest_package_name(value)}",
+        )
+    return value
+
+
 class PackageSpec(Base):
     """The generated ament package's metadata (package.xml)."""
 
+    # default <robot>_description (mesh_paths.package_name); set it when the robot's name
+    # makes no package name (2dof_planar) or the name is taken (UR's meshes are in ur_description)
+    name: (
+        Annotated[
+            str,
+            StringConstraints(max_length=128),
+            AfterValidator(_package_name),
+            Field(json_schema_extra={"pattern": REP144_PATTERN}),
+        ]
+        | None
+    ) = None
     version: Annotated[str, *_package_field("version", _CATKIN_VERSION, "write MAJOR.MINOR.PATCH, e.g. 0.1.0")] = (
         "0.1.0"
     )
@@ -780,6 +848,47 @@ class PackageSpec(Base):
         StringConstraints(max_length=200),
         *_package_field("license", None, "write an SPDX id, e.g. Apache-2.0"),
     ] = "Apache-2.0"
+
+
+KinematicsPlugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+/[A-Za-z0-9_:]+$", max_length=200)]
+KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+
+
+class KinematicsSpec(Base):
+    """One planning group's IK solver (MoveIt's kinematics.yaml); the defaults are what the
+    MoveIt Setup Assistant writes (group_meta_config.hpp, jazzy)."""
+
+    solver: KinematicsPlugin = KDL
+    search_resolution: Annotated[Number, Field(gt=0.0, le=10.0)] = 0.005
+    timeout: Duration = Measured(0.005, "5 ms", "time")
+
+
+class PilzLimitsSpec(Base):
+    """Cartesian limits of the Pilz industrial motion planner (pilz_cartesian_limits.yaml);
+    the defaults are the Setup Assistant's template values."""
+
+    max_trans_vel: LinearVelocity = Measured(1.0, "1 m/s", "linear_velocity")
+    max_trans_acc: LinearAcceleration = Measured(2.25, "2.25 m/s^2", "linear_acceleration")
+    max_trans_dec: LinearAcceleration = Measured(-5.0, "-5 m/s^2", "linear_acceleration")
+    max_rot_vel: AngularVelocity = Measured(1.57, "1.57 rad/s", "angular_velocity")
+    source: Source | None = None
+
+
+Scaling = Annotated[Number, Field(gt=0.0, le=1.0)]
+
+
+class MoveItSpec(Base):
+    """Turns on the MoveIt config package ``<robot>_moveit_config`` (docs/moveit_config.md).
+    Every joint of a planning group then needs velocity and acceleration limits (SPEC110)."""
+
+    # per group; a group that is one chain and is not listed gets the KDL defaults
+    kinematics: dict[Name, KinematicsSpec] = {}
+    default_velocity_scaling_factor: Scaling = 0.1
+    default_acceleration_scaling_factor: Scaling = 0.1
+    # the group state written to initial_positions.yaml; default: semantic.collision_matrix.default_state
+    initial_state: ElementName | None = None
+    pilz_cartesian_limits: PilzLimitsSpec = PilzLimitsSpec()
+    source: Source | None = None
 
 
 def _passthrough_xml(xml: str) -> str:
@@ -810,10 +919,33 @@ def _some_links(links: list[LinkSpec]) -> list[LinkSpec]:
     return links
 
 
+# The robot's name is the URDF's <robot name> and the stem of the generated files; ROS takes a
+# leading digit there (example-robot-data's 2dof_planar). The package name is checked apart.
+ROBOT_NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_]*$"
+
+
+def _robot_name(value: str) -> str:
+    if not re.fullmatch(ROBOT_NAME_PATTERN, value):
+        raise error(
+            "SPEC050",
+            f"{value!r} is not a valid robot name",
+            "use letters, digits and _ (e.g. warehouse_arm): it names the URDF, the SRDF and their files",
+        )
+    return value
+
+
+RobotName = Annotated[
+    str,
+    StringConstraints(max_length=128),
+    AfterValidator(_robot_name),
+    Field(json_schema_extra={"pattern": ROBOT_NAME_PATTERN}),
+]
+
+
 class RobotSpec(Base):
     """One robot. See specs/warehouse_arm.yaml for a complete example."""
 
-    name: Name
+    name: RobotName
     description: Text | None = None
     package: PackageSpec = PackageSpec()
     require_sources: bool = False
@@ -836,6 +968,7 @@ class RobotSpec(Base):
     # rendered sandboxed, since a spec is someone else's data (--templates is not).
     templates: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)] | None = None
     passthrough: list[PassthroughSpec] = []
+    moveit: MoveItSpec | None = None
 
 
 __all__ = ["Measured", "RobotSpec"]

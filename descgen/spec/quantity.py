@@ -42,6 +42,8 @@ class Written:
 
     @property
     def text(self) -> str:
+        if isinstance(self.value, tuple):  # a planar/floating joint's list, as written
+            return "[" + ", ".join(map(str, self.value)) + "]"
         return str(self.value)
 
 
@@ -167,9 +169,39 @@ Mass = Q("mass", "mass")
 InertiaQ = Q("inertia")
 Tolerance = Q("length", "tolerance")
 Frequency = Q("frequency", "frequency")
+LinearVelocity = Q("linear_velocity", "linear_velocity")
+AngularVelocity = Q("angular_velocity", "angular_velocity")
+LinearAcceleration = Q("linear_acceleration", "linear_acceleration")
 Duration = Q("time")
 Raw = Annotated[Written, BeforeValidator(_written), WithJsonSchema(QUANTITY_SCHEMA)]
 """A quantity whose kind the builder decides (joint limits, joint values)."""
+
+
+def _joint_written(value: object) -> Written:
+    """One quantity, or a list of them (the several values of a planar or floating joint)."""
+    w = unwrap(value)
+    if not isinstance(w.value, list | tuple):
+        return _written(value)
+    if not w.value:
+        raise error("UNIT001", "expected a list of quantities, got an empty list", "write e.g. [0 mm, 0 mm, 0 deg]")
+    return Written(tuple(_written(v).value for v in w.value), w.source)
+
+
+_JOINT_VALUE_SCHEMA: dict[str, Any] = {
+    "anyOf": [
+        *QUANTITY_SCHEMA["anyOf"],
+        {"type": "array", "items": {"anyOf": [{"type": "string"}, {"type": "number"}]}, "minItems": 1},
+        {
+            "type": "object",
+            "properties": {"value": {"type": "array"}, "source": {"type": "string"}},
+            "required": ["value"],
+            "additionalProperties": False,
+        },
+    ]
+}
+JointRaw = Annotated[Written, BeforeValidator(_joint_written), WithJsonSchema(_JOINT_VALUE_SCHEMA)]
+"""A joint value in a group state or known pose: one quantity, or for a planar or floating
+(virtual) joint a list, in MoveIt's variable order (x, y, theta; trans_x..z, rot_x..w)."""
 
 ZERO = Measured(0.0, "0", "length")
 ZERO_ANGLE = Measured(0.0, "0", "angle")

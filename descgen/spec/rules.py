@@ -79,3 +79,32 @@ def missing_sources(doc: Document, spec: s.RobotSpec) -> list[Finding]:
         if name != "plausibility":  # bounds chosen for checking, not measurements
             walk(getattr(spec, name), (info.alias or name,), False)
     return out
+
+
+def derived_package_name(doc: Document, spec: s.RobotSpec) -> list[Finding]:
+    """SPEC120/SPEC121: without ``package.name`` the package is ``<robot>_description``
+    (mesh_paths.package_name), which must be a REP 144 name. A name that does not start with
+    a lowercase letter breaks colcon and the ament index (SPEC120, the robot names that used to
+    be refused: ``2dof_planar``); uppercase or ``__`` only break REP 144's advice (SPEC121,
+    a warning, so specs that validated before still do). The hint is the exact fix."""
+    if spec.package.name is not None:
+        return []  # checked by the schema (models._package_name)
+    derived = f"{spec.name}_description"
+    why = s.rep144_problem(derived)
+    if why is None:
+        return []
+    suggested = s.suggest_package_name(derived)
+    has_package = isinstance(doc.data, dict) and isinstance(doc.data.get("package"), dict)
+    fix = f"add name: {suggested} under package:" if has_package else f"add package: {{name: {suggested}}} to the spec"
+    digit = not derived[:1].isalpha()
+    return [
+        Finding(
+            "SPEC120" if digit else "SPEC121",
+            "error" if digit else "warning",
+            f"the package name '{derived}' (<robot>_description, from the robot's name) is not a ROS package "
+            f"name: {why} (REP 144)",
+            fix,
+            "package",
+            doc.where(("name",)),
+        )
+    ]

@@ -198,9 +198,9 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     The joint cannot hold its own arm up: on the robot it sags or faults; in simulation it
     falls while the description claims it can lift.
     """
-    from ...kinematics import forward
+    from ...kinematics import at_zero
 
-    poses = forward(robot)
+    poses = at_zero(robot)
     if not poses:
         return
     loads = subtree_loads(robot, poses)
@@ -237,9 +237,9 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     A copied leg or arm with one axis changed turns the wrong way; nothing else notices.
     """
-    from ...kinematics import forward
+    from ...kinematics import at_zero
 
-    poses = forward(robot)
+    poses = at_zero(robot)
     flip = np.diag([1.0, -1.0, 1.0])
     done: set[str] = set()
     for j in robot.joints:

@@ -1,5 +1,5 @@
 # generated from specs/warehouse_arm.yaml by descgen — do not edit
-# descgen spec-sha256=bcff88e8bb53ea3769391a4c3b9e7b51e184aeed4ae7fe5ddbb3e62e8271860b content-sha256=3fadbfc4dcf30c366bb302a292800788c3a62a32b6a4f92f021d2496309d4c98
+# descgen spec-sha256=a090534ba3656e64ca8562c70afd09b4bc66cfc532123f14d6c9a57d5118efac content-sha256=3fadbfc4dcf30c366bb302a292800788c3a62a32b6a4f92f021d2496309d4c98
 """Run warehouse_arm on ros2_control (mock_components/GenericSystem): robot_state_publisher,
 ros2_control_node and the controller spawners."""
 

@@ -1,5 +1,5 @@
 # generated from specs/warehouse_arm.yaml by descgen — do not edit
-# descgen spec-sha256=bcff88e8bb53ea3769391a4c3b9e7b51e184aeed4ae7fe5ddbb3e62e8271860b content-sha256=99187bf15dd537e26bead8a077acc6fc87f1c93cc5e05ea46b0f02ecf3c7ca4b
+# descgen spec-sha256=a090534ba3656e64ca8562c70afd09b4bc66cfc532123f14d6c9a57d5118efac content-sha256=99187bf15dd537e26bead8a077acc6fc87f1c93cc5e05ea46b0f02ecf3c7ca4b
 """Show warehouse_arm in RViz: robot_state_publisher, joint_state_publisher_gui, rviz2."""
 
 from launch import LaunchDescription

@@ -1,0 +1,24 @@
+"""The user cache folder descgen keeps derived data in (pint's parsed definitions, mesh facts).
+
+``DESCGEN_CACHE_DIR=DIR`` moves it, ``DESCGEN_CACHE_DIR=`` (empty) switches caching off (the test
+suite does). Everything in it is derived from inputs it is keyed by, so deleting it only costs
+time; each user validates what it reads back (docs/security.md)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+CACHE_ENV = "DESCGEN_CACHE_DIR"
+
+
+def cache_root() -> Path | None:
+    """The cache folder, or None when caching is off."""
+    configured = os.environ.get(CACHE_ENV)
+    if configured == "":
+        return None
+    if configured is not None:
+        return Path(configured)
+    import platformdirs  # only when a cache is used: its import is not free on a cold start
+
+    return platformdirs.user_cache_path("descgen", appauthor=False)

@@ -1,0 +1,80 @@
+"""``evidence/frames.svg``: Graphviz's drawing of ``evidence/frames.dot``, made only when it
+would change.
+
+The svg is a pure function of the dot text and of the Graphviz that draws it, so the svg
+records both in a comment (``<!-- descgen-source: ... -->``): the sha256 of the dot bytes, and
+the ``dot`` executable it came from (resolved path, size and modification time; a Graphviz
+upgrade replaces the executable, and reading its identity costs no process, unlike
+``dot -V``). When both match, ``dot`` is not run. Its bytes depend on the Graphviz version,
+so the svg is not part of what check compares, and is not committed.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+_MARK = "<!-- descgen-source: "
+_HEAD = 4096  # the stamp is in the first lines; never read a whole (possibly huge) svg to find it
+
+
+def _dot_identity(dot: str) -> str:
+    real = os.path.realpath(dot)
+    st = os.stat(real)
+    return f"{real}:{st.st_size}:{st.st_mtime_ns}"
+
+
+def stamp(dot_source: bytes, dot: str) -> str:
+    """The comment that says what an svg was made from."""
+    return f"{_MARK}frames.dot sha256 {hashlib.sha256(dot_source).hexdigest()}, dot {_dot_identity(dot)} -->"
+
+
+def _recorded(svg: Path) -> str | None:
+    if svg.is_symlink() or not svg.is_file():
+        return None
+    with open(svg, "rb") as fh:
+        head = fh.read(_HEAD).decode("utf-8", errors="replace")
+    for line in head.splitlines():
+        if line.startswith(_MARK):
+            return line
+    return None
+
+
+def _stamped(svg_text: str, mark: str) -> str:
+    """``mark`` as the line after the XML declaration (a comment is allowed there)."""
+    first, nl, rest = svg_text.partition("\n")
+    if first.startswith("<?xml"):
+        return f"{first}\n{mark}\n{rest}" if nl else f"{first}\n{mark}\n"
+    return f"{mark}\n{svg_text}"
+
+
+def draw(package_dir: Path) -> bool:
+    """Write ``evidence/frames.svg`` from ``frames.dot`` when Graphviz is installed and the svg
+    does not already record this dot text and this ``dot``. True when ``dot`` ran."""
+    dot = shutil.which("dot")
+    source = package_dir / "evidence" / "frames.dot"
+    if dot is None or source.is_symlink() or not source.is_file():
+        return False
+    data = source.read_bytes()
+    svg = source.with_suffix(".svg")
+    mark = stamp(data, dot)
+    if _recorded(svg) == mark:
+        return False
+    fd, tmp = tempfile.mkstemp(prefix=".frames-", suffix=".svg", dir=source.parent)
+    os.close(fd)
+    try:
+        done = subprocess.run([dot, "-Tsvg", str(source), "-o", tmp], check=False, capture_output=True, timeout=60)
+        if done.returncode != 0:
+            return True  # as before: a Graphviz failure leaves the old drawing and fails nothing
+        text = Path(tmp).read_text(encoding="utf-8", errors="replace")
+        Path(tmp).write_text(_stamped(text, mark), encoding="utf-8")
+        os.replace(tmp, svg)  # a reader sees the old drawing or the new one
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+    return True

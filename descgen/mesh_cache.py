@@ -1,0 +1,182 @@
+"""Mesh facts kept between runs: parsing a mesh costs ~100x hashing its bytes.
+
+One small JSON file per mesh content, in the user cache folder descgen already uses for pint
+(``DESCGEN_CACHE_DIR``, default ``~/.cache/descgen``; ``DESCGEN_CACHE_DIR=`` switches it off,
+as the test suite does). The key is the sha256 of the mesh's bytes (and its format); the
+folder is named by a schema version and the versions of trimesh and pycollada, which decide
+what a parse gives, so an upgrade starts a fresh folder.
+
+An entry is data, never code (docs/security.md): JSON read with a size bound, every field
+checked for type, range and finiteness, and the key inside it must equal its file name. Any
+entry that fails is ignored and the mesh is measured again; writes go to a temporary file
+renamed into place, so a reader never sees half an entry. Nothing here raises: a cache that
+cannot be read or written is a cache miss.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import os
+import re
+import tempfile
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+from .cache_dir import cache_root
+from .meshes import MAX_TRIANGLES, MeshFacts
+
+SCHEMA = 1  # bump when MeshFacts or how it is measured changes
+MAX_ENTRY_BYTES = 4096  # a real entry is ~300 bytes; anything larger is not ours
+_KEY = re.compile(r"[0-9a-f]{64}")
+_KINDS = ("stl", "obj", "dae")
+
+
+def _version(dist: str) -> str:
+    try:
+        return metadata.version(dist)
+    except metadata.PackageNotFoundError:
+        return "none"
+
+
+@functools.cache
+def _folder_name() -> str:
+    # importlib.metadata reads the installed versions without importing trimesh (~0.5 s)
+    return f"meshes-v{SCHEMA}-trimesh{_version('trimesh')}-pycollada{_version('pycollada')}"
+
+
+def folder() -> Path | None:
+    """The folder of mesh entries, or None when caching is off (``DESCGEN_CACHE_DIR=``)."""
+    base = cache_root()
+    if base is None:
+        return None
+    return base / _folder_name()
+
+
+def _entry(root: Path, key: str) -> Path:
+    return root / key[:2] / f"{key}.json"
+
+
+def get(key: str, kind: str) -> MeshFacts | None:
+    """The cached facts of the mesh whose content hash is ``key``; None on a miss or on an
+    entry that is not exactly what :func:`put` writes."""
+    root = folder()
+    if root is None or not _KEY.fullmatch(key):
+        return None
+    try:
+        fd = os.open(_entry(root, key), os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except (OSError, ValueError):
+        return None
+    try:
+        raw = os.read(fd, MAX_ENTRY_BYTES + 1)  # a FIFO gives b"" at once (O_NONBLOCK), a device is cut
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
+    if len(raw) > MAX_ENTRY_BYTES:
+        return None
+    try:
+        doc = json.loads(raw, parse_constant=_no_constant)
+    except (ValueError, RecursionError):  # bad JSON, NaN/Infinity, bad UTF-8
+        return None
+    return _facts(doc, key, kind)
+
+
+def put(key: str, kind: str, facts: MeshFacts) -> None:
+    """Record ``facts`` for content ``key``; silently does nothing if the folder is unwritable."""
+    root = folder()
+    if root is None or not _KEY.fullmatch(key) or _facts(_doc(key, kind, facts), key, kind) != facts:
+        return  # never write what get() would refuse (a problem message too long, say)
+    path = _entry(root, key)
+    text = json.dumps(_doc(key, kind, facts), allow_nan=False, separators=(",", ":"))
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".json")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as out:
+                out.write(text)
+            os.replace(tmp, path)  # atomic: a concurrent reader sees the old entry or the new one
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except (OSError, ValueError):
+        return
+
+
+def _doc(key: str, kind: str, f: MeshFacts) -> dict[str, Any]:
+    return {
+        "schema": SCHEMA,
+        "sha256": key,
+        "kind": kind,
+        "lower": list(f.lower) if f.lower is not None else None,
+        "upper": list(f.upper) if f.upper is not None else None,
+        "volume": f.volume,
+        "watertight": f.watertight,
+        "triangles": f.triangles,
+        "unit_meter": f.unit_meter,
+        "open_edges": f.open_edges,
+        "problem": f.problem,
+    }
+
+
+def _no_constant(name: str) -> None:
+    raise ValueError(f"{name} is not a number descgen caches")
+
+
+def _real(v: Any) -> bool:
+    return type(v) in (float, int) and math.isfinite(v)  # not bool (a subclass of int)
+
+
+def _count(v: Any, most: int) -> bool:
+    return type(v) is int and 0 <= v <= most
+
+
+def _vec(v: Any) -> tuple[float, float, float] | None:
+    if type(v) is list and len(v) == 3 and all(_real(x) for x in v):
+        return (float(v[0]), float(v[1]), float(v[2]))
+    return None
+
+
+def _facts(doc: Any, key: str, kind: str) -> MeshFacts | None:
+    """The facts in a parsed entry, or None unless every field is what put() writes."""
+    fields = {"schema", "sha256", "kind", "lower", "upper", "volume", "watertight", "triangles"}
+    fields |= {"unit_meter", "open_edges", "problem"}
+    if type(doc) is not dict or set(doc) != set(fields):
+        return None
+    if doc["schema"] != SCHEMA or doc["sha256"] != key or doc["kind"] != kind or kind not in _KINDS:
+        return None
+    problem = doc["problem"]
+    if problem is not None:
+        if type(problem) is not str or not 0 < len(problem) <= 300 or "\n" in problem:
+            return None
+        rest = (doc["lower"], doc["upper"], doc["volume"], doc["unit_meter"])
+        if rest != (None, None, None, None) or doc["watertight"] is not False:
+            return None
+        if type(doc["triangles"]) is not int or doc["triangles"] != 0 or type(doc["open_edges"]) is not int:
+            return None
+        return MeshFacts(problem=problem) if doc["open_edges"] == 0 else None
+    lower, upper = _vec(doc["lower"]), _vec(doc["upper"])
+    volume, unit = doc["volume"], doc["unit_meter"]
+    if lower is None or upper is None or any(lo > hi for lo, hi in zip(lower, upper, strict=True)):
+        return None
+    if type(doc["watertight"]) is not bool or not _count(doc["triangles"], MAX_TRIANGLES) or doc["triangles"] == 0:
+        return None
+    if not _count(doc["open_edges"], 3 * MAX_TRIANGLES):
+        return None
+    if (volume is None) == doc["watertight"]:  # meshes.py measures a volume exactly when watertight
+        return None
+    if volume is not None and not (_real(volume) and volume >= 0):
+        return None
+    if unit is not None and not (_real(unit) and unit > 0):
+        return None
+    return MeshFacts(
+        lower=lower,
+        upper=upper,
+        volume=None if volume is None else float(volume),
+        watertight=doc["watertight"],
+        triangles=doc["triangles"],
+        unit_meter=None if unit is None else float(unit),
+        open_edges=doc["open_edges"],
+    )

@@ -1,0 +1,225 @@
+"""Where each joint moves the robot: the sweep grid, the links that move, and their direction.
+
+Pure forward kinematics (``descgen.kinematics``, numpy); no pinocchio. A joint is swept from
+its lower to its upper limit in ``steps`` equal steps, both limits exactly; a continuous
+joint through one turn. Mimic followers are not swept: they move with their leader
+(``descgen.mimic`` sets them at every step), and the links they carry count as moving.
+
+The direction a reviewer reads is the displacement of a link's origin in the root frame from
+the lower to the upper limit ("positive elbow_joint moves tool_link -z 250 mm"); for a
+continuous joint, whose limits are the same configuration, it is the displacement over a
+quarter turn from the state value.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import kinematics, mimic
+from ..model import ONE_DOF, ROTATING, Joint, Robot
+
+MOVES = 1e-9  # a pose change below this (metres, rotation-matrix entries) is no motion
+
+
+@dataclass(frozen=True)
+class Moved:
+    """One moving link: the displacement of its origin in the root frame (metres)."""
+
+    link: str
+    displacement: tuple[float, float, float]
+    tip: str  # "group": a group's chain tip; "end": the end of a chain (no moving child); else ""
+
+
+@dataclass(frozen=True)
+class JointMotion:
+    joint: Joint
+    values: tuple[float, ...]  # the grid, lower to upper (both exact)
+    continuous: bool
+    followers: tuple[str, ...]  # mimic joints that move with it
+    moved: tuple[Moved, ...]  # model order
+    axis: tuple[float, float, float] | None  # revolute/prismatic axis in the root frame at the state
+    span: tuple[float, float]  # the two values the displacement is measured between
+    pairs: tuple[tuple[str, str], ...]  # link pairs (with geometry, not disabled) whose relative pose changes
+
+    @property
+    def moving(self) -> tuple[str, ...]:
+        return tuple(m.link for m in self.moved)
+
+    def headline(self) -> Moved | None:
+        """The link the one-line direction names: the first tip that moves its origin."""
+        tips = sorted((m for m in self.moved if m.tip), key=lambda m: m.tip != "group")
+        shown = [m for m in tips if direction(m.displacement)] or [m for m in self.moved if direction(m.displacement)]
+        return shown[0] if shown else (tips[0] if tips else None)
+
+
+@dataclass(frozen=True)
+class NoRange:
+    """A joint with nothing to sweep: no limits, or lower >= upper."""
+
+    joint: Joint
+    why: str
+
+
+def sweepable(robot: Robot) -> list[Joint]:
+    """One-degree-of-freedom joints that are not mimic followers (those move with their leader)."""
+    return [j for j in robot.joints if j.type in ONE_DOF and mimic.relation(robot, j.name) is None]
+
+
+def grid(j: Joint, steps: int) -> tuple[tuple[float, ...], bool] | str:
+    """The values to visit, and whether the joint is continuous; or why there are none."""
+    if j.type == "continuous":
+        lo, hi = -math.pi, math.pi
+    else:
+        lm = j.limit
+        if lm is None or lm.lower is None or lm.upper is None:
+            return "it has no lower and upper limit"
+        lo, hi = float(lm.lower), float(lm.upper)
+        if not hi > lo:
+            return f"its range is empty (lower {lo:g}, upper {hi:g})"
+    values = [lo + (hi - lo) * k / steps for k in range(steps)] + [hi]
+    return tuple(values), j.type == "continuous"
+
+
+def followers(robot: Robot, leader: str) -> tuple[str, ...]:
+    return tuple(r.follower for r in mimic.analyse(robot).relations.values() if r.leader == leader)
+
+
+def joint_values(robot: Robot, state: Mapping[str, float], joint: str, value: float) -> dict[str, float]:
+    """Every joint's value: the state, ``joint`` at ``value``, followers from their leaders."""
+    return mimic.resolve(robot, {**state, joint: value})
+
+
+def analyse(
+    robot: Robot,
+    j: Joint,
+    values: Sequence[float],
+    continuous: bool,
+    state: Mapping[str, float],
+    geometry: Sequence[str],
+    disabled: set[frozenset[str]],
+) -> JointMotion:
+    """Which links ``j`` moves over ``values``, how far, and which pairs could collide."""
+    poses = [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in values]
+    first = poses[0]
+    moving = {n for p in poses[1:] for n, m in p.items() if n in first and np.max(np.abs(m - first[n])) > MOVES}
+    q0 = state.get(j.name, 0.0)
+    span = (q0, q0 + math.pi / 2) if continuous else (values[0], values[-1])
+    at = (
+        [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in span]
+        if continuous
+        else [poses[0], poses[-1]]
+    )
+    tips = _group_tips(robot)
+    parents = {jj.parent for jj in robot.joints if jj.child in moving}
+    moved = tuple(
+        Moved(
+            lk.name,
+            _vec(at[1][lk.name][:3, 3] - at[0][lk.name][:3, 3]),
+            "group" if lk.name in tips else "" if lk.name in parents else "end",
+        )
+        for lk in robot.links
+        if lk.name in moving
+    )
+    return JointMotion(
+        j,
+        tuple(values),
+        continuous,
+        followers(robot, j.name),
+        moved,
+        _axis_at_state(robot, j, state),
+        span,
+        _pairs(poses, geometry, disabled),
+    )
+
+
+def _pairs(
+    poses: Sequence[Mapping[str, np.ndarray]], geometry: Sequence[str], disabled: set[frozenset[str]]
+) -> tuple[tuple[str, str], ...]:
+    """Pairs of links with geometry, not disabled, whose relative pose changes in the sweep
+    (two links both fixed, or moving together, collide at every step or at none: not this joint's)."""
+    names = [n for n in geometry if n in poses[0]]
+    # each link's pose relative to its pose at the first step: a pair's relative pose changes
+    # exactly when these differ (A0^-1 B0 = A^-1 B  <=>  A A0^-1 = B B0^-1)
+    inv0 = {n: np.linalg.inv(poses[0][n]) for n in names}
+    deltas = {n: np.stack([p[n] @ inv0[n] for p in poses]) for n in names}
+    out = []
+    for i, a in enumerate(names):
+        for b in names[i + 1 :]:
+            if frozenset((a, b)) not in disabled and np.max(np.abs(deltas[a] - deltas[b])) > MOVES:
+                out.append((a, b))
+    return tuple(out)
+
+
+def _group_tips(robot: Robot) -> set[str]:
+    groups = robot.semantic.groups if robot.semantic else ()
+    return {tip for g in groups for _, tip in g.chains}
+
+
+def _axis_at_state(robot: Robot, j: Joint, state: Mapping[str, float]) -> tuple[float, float, float] | None:
+    """The joint axis in the root frame with every joint at the state."""
+    if j.axis is None or j.parent is None or j.type not in (*ROTATING, "prismatic"):
+        return None
+    poses = kinematics.forward(robot, joint_values(robot, state, j.name, state.get(j.name, 0.0)))
+    if j.parent not in poses:
+        return None
+    rot = (poses[j.parent] @ kinematics.joint_transform(j))[:3, :3]
+    axis = rot @ np.asarray(j.axis, dtype=float)
+    n = float(np.linalg.norm(axis))
+    return _vec(axis / n) if n > 0 else None
+
+
+def _vec(v: np.ndarray) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+# --- words for people ------------------------------------------------------------------------------
+
+
+def direction(d: Sequence[float]) -> str:
+    """``+z 312 mm, -x 40 mm``: components of at least 1 mm (as rounded), largest first."""
+    parts = sorted(
+        ((abs(c), "xyz"[i], c) for i, c in enumerate(d)), key=lambda t: (-round(t[0] * 1000), "xyz".index(t[1]))
+    )
+    words = [
+        f"{'+' if c > 0 else '-'}{axis} {round(mag * 1000)} mm" for mag, axis, c in parts if round(mag * 1000) >= 1
+    ]
+    return ", ".join(words)
+
+
+def axis_text(a: Sequence[float] | None) -> str:
+    """``+y`` for a principal axis, else the unit vector to three decimals."""
+    if a is None:
+        return ""
+    for i, c in enumerate(a):
+        if abs(abs(c) - 1.0) < 1e-9:
+            return f"{'+' if c > 0 else '-'}{'xyz'[i]}"
+    return "(" + ", ".join(_short(c, 3) for c in a) + ")"
+
+
+def value_text(j: Joint, v: float) -> str:
+    """A joint value for display: degrees for angles, millimetres for lengths, one decimal."""
+    if j.type in ROTATING:
+        return f"{_short(math.degrees(v), 1)} deg"
+    return f"{_short(v * 1000, 1)} mm"
+
+
+def _short(x: float, digits: int) -> str:
+    text = f"{x:.{digits}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def sentence(m: JointMotion) -> str:
+    """``positive elbow_joint moves tool_link -z 250 mm`` (or what moves when no origin does)."""
+    name = m.joint.name
+    head = m.headline()
+    over = " over a quarter turn" if m.continuous else ""
+    if head is None:
+        return f"positive {name} moves no link"
+    words = direction(head.displacement)
+    if not words:
+        return f"positive {name} turns {head.link} in place{over}"
+    return f"positive {name} moves {head.link} {words}{over}"

@@ -1,0 +1,263 @@
+"""The persistent mesh-facts cache (descgen/mesh_cache.py) and the numpy binary-STL reader
+(descgen/meshes.py ``_stl_facts``): a cache hit answers as a parse would, a tampered entry is
+never trusted, a changed file is measured again, and the numpy reader equals trimesh."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import trimesh
+
+from descgen import mesh_cache, meshes
+from descgen.audit.inputs import Options, audit
+
+from .corpus import descriptions, share
+
+
+def _forget() -> None:
+    """What a fresh process knows: nothing in memory."""
+    for memo in (meshes._FACTS, meshes._BY_STAT, meshes._CACHE):
+        memo.clear()
+    meshes._ROBOT_FACTS.clear()
+
+
+@pytest.fixture
+def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", str(folder))
+    _forget()
+    yield folder
+    _forget()
+
+
+def _no_parsing(monkeypatch: pytest.MonkeyPatch) -> None:
+    def refuse(*_: object) -> None:
+        raise AssertionError("a mesh was parsed although its facts were cached")
+
+    monkeypatch.setattr(meshes, "_parse", refuse)
+    monkeypatch.setattr(meshes, "_stl_facts", refuse)
+
+
+def _box(path: Path, extents: tuple[float, float, float]) -> Path:
+    path.write_bytes(trimesh.creation.box(extents=extents).export(file_type="stl"))  # binary STL
+    return path
+
+
+def _entries(folder: Path) -> list[Path]:
+    return sorted(folder.rglob("*.json"))
+
+
+# -- the cache ------------------------------------------------------------------------------------
+
+
+def test_a_cache_hit_answers_without_parsing_and_equals_the_parse(cache: Path, tmp_path: Path, monkeypatch) -> None:
+    mesh = _box(tmp_path / "box.stl", (0.1, 0.2, 0.3))
+    cold = meshes.measure(mesh)
+    assert cold.volume == pytest.approx(0.1 * 0.2 * 0.3, rel=1e-6)  # hand value (float32 corners)
+    (entry,) = _entries(cache)
+    assert json.loads(entry.read_text())["triangles"] == 12  # a box: 6 faces x 2 triangles
+    _forget()
+    _no_parsing(monkeypatch)
+    assert meshes.measure(mesh) == cold
+
+
+def test_the_cache_is_off_when_the_variable_is_empty(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", "")
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    _forget()
+    assert mesh_cache.folder() is None
+    meshes.measure(_box(tmp_path / "box.stl", (1, 2, 3)))
+    assert not (tmp_path / "home").exists() and not (tmp_path / "xdg").exists()
+    _forget()
+
+
+def test_a_changed_file_is_measured_again(cache: Path, tmp_path: Path) -> None:
+    mesh = tmp_path / "part.stl"
+    small = meshes.measure(_box(mesh, (1.0, 1.0, 1.0))).upper
+    stat = mesh.stat()
+    _box(mesh, (2.0, 2.0, 2.0))  # same name, same size (12 triangles), other bytes
+    os.utime(mesh, ns=(stat.st_atime_ns, stat.st_mtime_ns))  # even with the old time stamp
+    _forget()  # a new process: the content is hashed, so the old entry does not match
+    assert small == (0.5, 0.5, 0.5)
+    assert meshes.measure(mesh).upper == (1.0, 1.0, 1.0)
+    assert len(_entries(cache)) == 2
+
+
+def _tamper(entry: Path, how: str) -> None:
+    doc = json.loads(entry.read_text())
+    if how == "bad json":
+        entry.write_text(entry.read_text()[:-5])
+    elif how == "nan":
+        entry.write_text(entry.read_text().replace(str(doc["upper"][0]), "NaN", 1))
+    elif how == "infinity volume":
+        entry.write_text(entry.read_text().replace(json.dumps(doc["volume"]), "1e999", 1))
+    elif how == "string coordinate":
+        entry.write_text(json.dumps({**doc, "lower": ["0", 0, 0]}))
+    elif how == "bool count":
+        entry.write_text(json.dumps({**doc, "triangles": True}))
+    elif how == "negative volume":
+        entry.write_text(json.dumps({**doc, "volume": -1.0}))
+    elif how == "volume without watertight":
+        entry.write_text(json.dumps({**doc, "watertight": False}))
+    elif how == "lower above upper":
+        entry.write_text(json.dumps({**doc, "lower": doc["upper"], "upper": doc["lower"]}))
+    elif how == "extra key":
+        entry.write_text(json.dumps({**doc, "__class__": "os.system"}))
+    elif how == "other schema":
+        entry.write_text(json.dumps({**doc, "schema": 0}))
+    elif how == "other key inside":
+        entry.write_text(json.dumps({**doc, "sha256": "0" * 64}))
+    elif how == "problem beside facts":
+        entry.write_text(json.dumps({**doc, "problem": "x"}))
+    elif how == "huge":
+        entry.write_text(json.dumps({**doc, "pad": "x" * 10_000_000}))
+    elif how == "list":
+        entry.write_text("[1, 2, 3]")
+    elif how == "deep":
+        entry.write_text("[" * 100_000 + "]" * 100_000)
+    elif how == "fifo":
+        entry.unlink()
+        os.mkfifo(entry)  # a read must not block
+    else:
+        raise AssertionError(how)
+
+
+HOW = [
+    "bad json",
+    "nan",
+    "infinity volume",
+    "string coordinate",
+    "bool count",
+    "negative volume",
+    "volume without watertight",
+    "lower above upper",
+    "extra key",
+    "other schema",
+    "other key inside",
+    "problem beside facts",
+    "huge",
+    "list",
+    "deep",
+    "fifo",
+]
+
+
+@pytest.mark.parametrize("how", HOW)
+def test_a_tampered_entry_is_ignored_and_measured_again(cache: Path, tmp_path: Path, how: str) -> None:
+    mesh = _box(tmp_path / "box.stl", (0.1, 0.2, 0.3))
+    truth = meshes.measure(mesh)
+    (entry,) = _entries(cache)
+    key = entry.stem
+    _tamper(entry, how)
+    assert mesh_cache.get(key, "stl") is None
+    _forget()
+    assert meshes.measure(mesh) == truth  # recomputed, not read from the entry
+    assert mesh_cache.get(key, "stl") == truth  # and written back whole
+
+
+def test_a_plausible_but_wrong_entry_is_what_the_content_key_prevents(cache: Path, tmp_path: Path) -> None:
+    # an entry of another mesh copied under this mesh's name carries the other key inside
+    a, b = _box(tmp_path / "a.stl", (1, 1, 1)), _box(tmp_path / "b.stl", (3, 3, 3))
+    meshes.measure(a), meshes.measure(b)
+    first, second = _entries(cache)
+    second.write_bytes(first.read_bytes())
+    assert mesh_cache.get(second.stem, "stl") is None
+
+
+def test_an_unreadable_mesh_is_cached_with_its_problem(cache: Path, tmp_path: Path, monkeypatch) -> None:
+    bad = tmp_path / "bad.dae"
+    bad.write_bytes(b'<?xml version="1.0"?><!DOCTYPE x [<!ENTITY e SYSTEM "/etc/passwd">]><COLLADA/>')
+    problem = meshes.measure(bad).problem
+    assert problem is not None and "DTD" in problem
+    _forget()
+    _no_parsing(monkeypatch)
+    assert meshes.measure(bad).problem == problem
+
+
+def test_an_unwritable_cache_folder_is_a_miss_not_an_error(tmp_path: Path, monkeypatch) -> None:
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", str(blocker))
+    _forget()
+    assert meshes.measure(_box(tmp_path / "box.stl", (1, 2, 3))).upper == (0.5, 1.0, 1.5)
+    _forget()
+
+
+# GEOM032 on alex_nub_hands needs its meshes' boxes; allegro's palm mesh bounds INER005; go1 has DAE
+CORPUS_FEW = [
+    "alex_description/urdf/alex_nub_hands.urdf",
+    "allegro_hand_description/urdf/allegro_left_hand.urdf",
+    "go1_description/urdf/go1.urdf",
+]
+
+
+@pytest.mark.skipif(share() is None, reason="example-robot-data is not installed")
+def test_cached_facts_give_the_findings_of_a_cold_run_on_corpus_robots(cache: Path, monkeypatch) -> None:
+    chosen = [d for d in descriptions() if d[0] in CORPUS_FEW]
+    assert len(chosen) == len(CORPUS_FEW)
+    root = share()
+
+    def findings() -> list[object]:
+        return [f for _, urdf, srdf in chosen for f in audit(urdf, Options(srdf=srdf, package_paths=(root,)))]
+
+    cold = findings()
+    assert sum(f.code == "GEOM032" for f in cold) == 2  # type: ignore[attr-defined]  # docs/audit-corpus.md
+    assert _entries(cache)
+    _forget()
+    _no_parsing(monkeypatch)
+    assert findings() == cold
+
+
+# -- the numpy binary-STL reader ------------------------------------------------------------------
+
+
+def _trimesh_facts(data: bytes) -> meshes.MeshFacts:
+    return meshes._parse(data, "stl").facts
+
+
+def test_numpy_stl_equals_trimesh_on_made_meshes() -> None:
+    box = trimesh.creation.box(extents=(0.1, 0.2, 0.3))
+    opened = trimesh.Trimesh(box.vertices, box.faces[:-1], process=False)  # one triangle removed: 3 open edges
+    flipped = trimesh.Trimesh(box.vertices, [f[::-1] if i == 0 else f for i, f in enumerate(box.faces)], process=False)
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=0.05)
+    for mesh in (box, opened, flipped, sphere):
+        data = mesh.export(file_type="stl")
+        fast = meshes._stl_facts(data)
+        assert fast is not None and fast == _trimesh_facts(data)
+    assert meshes._stl_facts(opened.export(file_type="stl")).open_edges == 3  # type: ignore[union-attr]
+    assert not meshes._stl_facts(flipped.export(file_type="stl")).watertight  # type: ignore[union-attr]
+
+
+def test_numpy_stl_leaves_other_files_to_trimesh() -> None:
+    box = trimesh.creation.box(extents=(1, 1, 1))
+    binary = box.export(file_type="stl")
+    assert meshes._stl_facts(trimesh.exchange.stl.export_stl_ascii(box).encode()) is None
+    assert meshes._stl_facts(binary[:-10]) is None  # length disagrees with the header's count
+    assert meshes._stl_facts(binary[:84]) is None  # zero triangles read
+    nan = bytearray(binary)
+    nan[84 + 12 : 84 + 16] = b"\x00\x00\xc0\x7f"  # first corner x = NaN (float32)
+    assert meshes._stl_facts(bytes(nan)) is None
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(share() is None, reason="example-robot-data is not installed")
+def test_numpy_stl_equals_trimesh_on_every_corpus_stl() -> None:
+    root = share()
+    assert root is not None
+    files = sorted(
+        {p.resolve() for p in (root / "example-robot-data" / "robots").rglob("*") if p.suffix.lower() == ".stl"}
+    )
+    assert len(files) > 300
+    fast = 0
+    for path in files:
+        data = path.read_bytes()
+        got = meshes._stl_facts(data)
+        if got is not None:
+            fast += 1
+            assert got == _trimesh_facts(data), path
+    assert fast >= len(files) - 5  # nearly all are binary; the rest went to trimesh

@@ -1,0 +1,49 @@
+"""The compiled-template cache (descgen/render/__init__.py): same files with and without it, and a
+changed template is recompiled, never served from the cache."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from descgen import render
+from descgen.render import default_templates, render_package
+from descgen.spec import load_spec
+
+from .conftest import EXAMPLE
+
+
+def _fresh(monkeypatch: pytest.MonkeyPatch, folder: str) -> None:
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", folder)
+    render._bytecode_cache.cache_clear()
+
+
+def test_cached_templates_render_the_same_files(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    robot = load_spec(EXAMPLE).robot
+    _fresh(monkeypatch, "")
+    plain = render_package(robot, EXAMPLE.name)
+    _fresh(monkeypatch, str(tmp_path))
+    first = render_package(robot, EXAMPLE.name)  # compiles and stores
+    stored = list(tmp_path.rglob("*.cache"))
+    assert stored, "nothing was cached"
+    _fresh(monkeypatch, str(tmp_path))
+    second = render_package(robot, EXAMPLE.name)  # loads what was stored
+    assert plain == first == second
+    _fresh(monkeypatch, "")
+
+
+def test_a_changed_template_is_recompiled(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    robot = load_spec(EXAMPLE).robot
+    overrides = tmp_path / "templates"
+    overrides.mkdir()
+    shutil.copy(default_templates() / "frames.md.j2", overrides / "frames.md.j2")
+    _fresh(monkeypatch, str(tmp_path / "cache"))
+    before = render_package(robot, EXAMPLE.name, overrides)["evidence/frames.md"]
+    text = (overrides / "frames.md.j2").read_text(encoding="utf-8")
+    (overrides / "frames.md.j2").write_text(text + "CHANGED-TEMPLATE\n", encoding="utf-8")
+    _fresh(monkeypatch, str(tmp_path / "cache"))
+    after = render_package(robot, EXAMPLE.name, overrides)["evidence/frames.md"]
+    assert "CHANGED-TEMPLATE" not in before and "CHANGED-TEMPLATE" in after
+    _fresh(monkeypatch, "")
