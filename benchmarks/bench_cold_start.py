@@ -24,6 +24,9 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rows import row
+
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
 SPEC = ROOT / "specs" / "warehouse_arm.yaml"
@@ -66,6 +69,7 @@ def main() -> None:
         "warm: OS file cache, pint cache, bytecode"
     )
     print("anchor: xacro CLI expanding the example's generated Xacro, measured in the same run")
+    table: list[tuple[str, float, float]] = []
     print(f"{'command':<24} {'n':>2} {'wall':>8} {'cpu':>8}   {'anchor wall':>11} {'cpu':>8}   ratio wall   cpu")
     for label, argv in (
         ("descgen --help", [descgen, "--help"]),
@@ -78,6 +82,11 @@ def main() -> None:
             f"{label:<24} {REPEAT:>2} {wall:7.3f}s {cpu:7.3f}s   {anchor_wall:10.3f}s {anchor_cpu:7.3f}s"
             f"   {wall / anchor_wall:9.1f}x {cpu / anchor_cpu:5.1f}x"
         )
+        table.append((f"`{label[len('descgen ') :]}` on the example, CPU", cpu, anchor_cpu))
+    for measure, cpu, anchor in table:  # the README table's rows (benchmarks/summary.py)
+        row(measure, cpu, anchor, "cold", anchor_name="xacro")
+    # the load at the end too: other work during the run shows as wall time (and noisier CPU)
+    print(f"load at the end {os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

@@ -69,6 +69,36 @@ def xacro_arg(text: str) -> tuple[str, str]:
     return name, value
 
 
+def launch_arg(text: str) -> tuple[str, str]:
+    """``--launch-arg NAME:=VALUE`` (a launch configuration, for ``$(var NAME)`` in a
+    controllers YAML) as (name, value)."""
+    from .readers.launch_subst import check_value
+
+    name, sep, value = text.partition(":=")
+    hint = "write e.g. --launch-arg joint_prefix:=joint (one line, no control characters)"
+    if not sep or not name:
+        raise OptionError("CTRL054", f"--launch-arg {text!a} is not name:=value", hint)
+    if (problem := check_value(name, value)) is not None:
+        raise OptionError("CTRL054", f"--launch-arg: {problem}", hint)
+    return name, value
+
+
+def variant(text: str) -> tuple[str, tuple[tuple[str, str], ...]]:
+    """``--variant NAME:[ARG:=VALUE[,ARG:=VALUE]...]`` (import): a hardware variant (mock,
+    gazebo, real) and the Xacro arguments that select it, as (name, ((arg, value), ...))."""
+    name, sep, rest = text.partition(":")
+    hint = "write e.g. --variant mock:use_mock_hardware:=true or --variant real: (no arguments)"
+    if not sep or name not in ("mock", "gazebo", "real"):
+        raise OptionError("IMP027", f"--variant '{text}' is not mock|gazebo|real:[ARG:=VALUE,...]", hint)
+    args = []
+    for item in rest.split(",") if rest else []:
+        arg, sep, value = item.partition(":=")
+        if not sep or not arg:
+            raise OptionError("IMP027", f"--variant '{text}': '{item}' is not name:=value", hint)
+        args.append((arg, value))
+    return name, tuple(args)
+
+
 def plant_fault(text: str) -> tuple[str, str]:
     """``--plant-fault JOINT:=KIND`` as (joint, kind); whether the joint exists is checked
     against the robot (``control.system.plant_faults``)."""

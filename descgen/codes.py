@@ -1039,6 +1039,19 @@ register(
       launch. Report it; fix the template that wrote it.""",
     ),
     C(
+        "GEN093",
+        "moveit-mock-start-mismatch",
+        "error",
+        "generate",
+        "The MoveIt package's config/<robot>.urdf.xacro, expanded, does not start the mock hardware at the "
+        "initial state.",
+        """MoveItConfigsBuilder loads config/<robot>.urdf.xacro, which passes initial_positions.yaml to the
+      description's ros2_control Xacro; each position state's initial_value must then be the initial
+      state's value, or the demo starts somewhere else than the spec says (and than MoveIt's start state).
+      The file is expanded with xacro (sandboxed, both packages on the package path) and compared with the
+      model. Report it; fix the template (robot.ros2_control.xacro.j2, moveit_urdf.xacro.j2) that changed.""",
+    ),
+    C(
         "GEN081",
         "evidence-page-refused",
         "error",
@@ -1607,6 +1620,47 @@ register(
       every reader uses. Reported so nothing is lost silently.""",
     ),
     C(
+        "IMP027",
+        "import-variant-option",
+        "error",
+        "import",
+        "--variant is malformed, repeats a name, lacks the mock variant, or is given for a file that is no Xacro.",
+        """The spec's hardware variants are mock (the spec's own hardware), gazebo and real, selected in the
+      generated Xacro by hardware:=; import needs the Xacro arguments that give each, and the mock one
+      because the spec's hardware.plugin must be mock_components/GenericSystem when variants exist.""",
+    ),
+    C(
+        "IMP028",
+        "import-variants-differ",
+        "error",
+        "import",
+        "Two hardware variants of a Xacro expand to different robots (links, joints, limits, pass-through or "
+        "<ros2_control> components), not only different <hardware>.",
+        """The spec's hardware.variants change the hardware plugin and its params and nothing else; a variant
+      that changes a link could not be given back by hardware:=, so import stops at the first difference
+      and writes nothing.""",
+    ),
+    C(
+        "IMP029",
+        "import-variant-hardware",
+        "error",
+        "import",
+        "A hardware variant's plugin is not what the spec allows under that name (mock: GenericSystem, gazebo: "
+        "GazeboSimSystem, real: a vendor plugin), or the blocks cannot leave pass-through.",
+        """The spec would refuse the variant on load (SPEC080-082); refusing at import names the variant and
+      its arguments, which the spec error could not.""",
+    ),
+    C(
+        "IMP030",
+        "import-variants-imported",
+        "info",
+        "import",
+        "The <ros2_control> hardware is imported for several variants; the generated Xacro selects them with "
+        "hardware:=.",
+        """Replaces IMP020 (one variant) when --variant is given: the launch files that passed
+      use_mock_hardware or sim_gazebo now pass hardware:=mock|gazebo|real.""",
+    ),
+    C(
         "IMP012",
         "import-package-outside-project",
         "info",
@@ -1770,5 +1824,65 @@ register(
         """The mesh could not be resolved inside the description's package or --package-path (docs/security.md),
       so its link is checked without it and contacts with it are missed. Give --package-path or fix the
       filename.""",
+    ),
+)
+
+# --------------------------------------------------------------------------- launch substitutions in a controllers YAML
+register(
+    C(
+        "CTRL052",
+        "launch-var-without-value",
+        "warning",
+        "read",
+        "A controllers YAML holds a $(var NAME) launch substitution and no --launch-arg NAME:=VALUE (or default "
+        "in the file) gives its value; names that hold it are not checked against the URDF.",
+        """A launch file loads such a file with ParameterFile(..., allow_substs=True) (ros2_control_demos
+      example_1: $(var joint_prefix)1), so the literal text is not what the controller sees. Reporting
+      the literal as an unknown joint would be a false error; the warning stands for it. Pass the launch
+      argument's value with --launch-arg to check the names.""",
+    ),
+    C(
+        "CTRL053",
+        "launch-substitution-not-evaluated",
+        "warning",
+        "read",
+        "A controllers YAML holds a launch substitution descgen does not evaluate ($(env), $(eval), $(command), "
+        "$(find-pkg-share), ..., or one launch cannot parse); it is left as written.",
+        """An audited file is data: evaluating it would read the environment (secrets), run Python or
+      commands, or search the file system. Only $(var NAME) is evaluated, from --launch-arg values.
+      Names that hold the substitution are not checked; write the value, or a $(var) given with
+      --launch-arg.""",
+    ),
+    C(
+        "CTRL054",
+        "launch-substitution-refused",
+        "error",
+        "read",
+        "A --launch-arg is not NAME:=VALUE (or its value holds a control character or is too long), or a "
+        "controllers YAML holds too many, too deeply nested or too large launch substitutions.",
+        """Limits keep a hostile file (a substitution bomb) from exhausting memory or time, and a
+      newline in a value would add YAML lines that are not in the file. Exit 2, nothing read further.""",
+    ),
+    C(
+        "IMP031",
+        "import-launch-substitution",
+        "info",
+        "import",
+        "A launch substitution in the controllers YAML was replaced by its --launch-arg value (or the file's "
+        "default) in the imported spec.",
+        """The spec holds the names the controller sees with these launch arguments, not the $(var) text:
+      the generated controllers file is loaded without substitutions. Import with the values your
+      launch file uses.""",
+    ),
+    C(
+        "IMP032",
+        "import-launch-substitution-unresolved",
+        "error",
+        "import",
+        "The controllers YAML holds a launch substitution without a value ($(var NAME) without --launch-arg), or "
+        "one descgen does not evaluate; the import stops.",
+        """The spec's controller joint names must be the robot's joints, and the literal $(var ...) is
+      none; guessing a value would import a robot that differs from the one launched. Pass
+      --launch-arg NAME:=VALUE, or write the value into the file. Exit 2, nothing written.""",
     ),
 )

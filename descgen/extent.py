@@ -19,6 +19,10 @@ from .model import Box, Collision, Cylinder, Link, Robot, Sphere, Visual
 from .transforms import Mat, pose_matrix, rpy_matrix
 
 _SIDES = 64  # a cylinder's rims become 64-gons drawn around the circle, so they contain it
+# built once (the audit asks for thousands of hulls): the signs of a box's corners, the unit ring
+_CUBE = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+_RING_ANGLES = np.linspace(0.0, 2 * math.pi, _SIDES, endpoint=False)
+_RING_COS, _RING_SIN = np.cos(_RING_ANGLES), np.sin(_RING_ANGLES)
 
 
 @dataclass(frozen=True)
@@ -34,13 +38,12 @@ def shape_hull(shape: Visual | Collision) -> Hull | None:
     g = shape.geometry
     if isinstance(g, Box):
         half = np.array(g.size, dtype=float) / 2
-        local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
+        local = _CUBE * half
         pad = 0.0
     elif isinstance(g, Cylinder):
         # the circumscribed polygon: its corners sit at r / cos(pi / n), so nothing is cut off
         r = g.radius / math.cos(math.pi / _SIDES)
-        angles = np.linspace(0.0, 2 * math.pi, _SIDES, endpoint=False)
-        ring = np.stack([r * np.cos(angles), r * np.sin(angles)], axis=1)
+        ring = np.stack([r * _RING_COS, r * _RING_SIN], axis=1)
         local = np.vstack([np.column_stack([ring, np.full(_SIDES, z)]) for z in (-g.length / 2, g.length / 2)])
         pad = 0.0
     elif isinstance(g, Sphere):

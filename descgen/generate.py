@@ -115,19 +115,19 @@ def plan(
     if sandboxed and recorded is not None:
         templates = spec_folder(spec, recorded)  # validated by load_spec (SPEC064)
     shown = spec_display(spec, root)
-    files = render_package(robot, shown, templates, sandboxed)
     meshes = _mesh_copies(robot, root)
     if robot.semantic is not None and robot.semantic.collision_matrix is not None:
-        # the matrix needs the expanded URDF; the SRDF and its evidence are rendered again with it
-        robot = _with_matrix(robot, files, meshes, root / package_name(robot))
-        files = render_package(robot, shown, templates, sandboxed)
+        # the matrix needs the URDF (rendered alone first: the rest would be rendered again), and
+        # the SRDF and its evidence need the matrix
+        urdf = f"urdf/{robot.name}.urdf"
+        robot = _with_matrix(
+            robot, render_package(robot, shown, templates, sandboxed, only={urdf}), meshes, root / package_name(robot)
+        )
+    files = render_package(robot, shown, templates, sandboxed)
     if meshes:
         files[MANIFEST] = header.add(MANIFEST, _manifest(meshes), shown, robot.spec_hash or "0" * 64)
     package_dir = root / package_name(robot)
-    proofs = tuple(
-        (name, tuple(check(files, robot, package_dir)))
-        for name, check in [*checks.CHECKS, *(checks.THOROUGH if thorough else [])]
-    )  # checks.run_all, kept by name for the evidence page
+    proofs = checks.run_named(files, robot, package_dir, thorough)  # by name for the evidence page
     found = [*loaded.findings, *(f for _, done in proofs for f in done)]
     moveit_files: dict[str, str] = {}
     moveit_dir = None
@@ -137,7 +137,7 @@ def plan(
 
         moveit_dir = root / moveit_package_name(robot)
         moveit_files = render(robot, files, shown, templates, sandboxed)
-        found += proof.check(moveit_files, robot, moveit_dir)
+        found += proof.check(moveit_files, robot, moveit_dir, files)
     return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes, moveit_files, moveit_dir, proofs)
 
 

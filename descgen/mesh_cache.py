@@ -11,27 +11,46 @@ checked for type, range and finiteness, and the key inside it must equal its fil
 entry that fails is ignored and the mesh is measured again; writes go to a temporary file
 renamed into place, so a reader never sees half an entry. Nothing here raises: a cache that
 cannot be read or written is a cache miss.
+
+In front of the hashes sits a stat index, as git's index sits in front of its object hashes:
+one file (``stat-index``) mapping a mesh's path and stat data (size, mtime, inode, ctime, all
+in nanoseconds where the OS has them) to the content key last computed for it, so a warm run
+stats a mesh instead of reading and hashing its bytes (sha256 of the corpus's 350 MB is
+~0.3 s). A file whose stat data differs in any field is read and hashed again; one changed
+less than :data:`RACY_NS` before it was hashed is never indexed ("racily clean" in git's
+words: a rewrite within the file system's time-stamp granularity could keep every field).
+The index is validated on read like the entries (bounded, typed; a bad entry is skipped, a
+bad file ignored whole).
 """
 
 from __future__ import annotations
 
+import atexit
 import functools
 import json
 import math
 import os
 import re
 import tempfile
+import threading
 from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 from .cache_dir import cache_root
 from .meshes import MAX_TRIANGLES, MeshFacts
+from .safeio import MIB
 
 SCHEMA = 1  # bump when MeshFacts or how it is measured changes
 MAX_ENTRY_BYTES = 4096  # a real entry is ~300 bytes; anything larger is not ours
 _KEY = re.compile(r"[0-9a-f]{64}")
 _KINDS = ("stl", "obj", "dae")
+INDEX = "stat-index"  # beside the entries' subfolders; not *.json: it is no facts entry
+MAX_INDEX_BYTES = 32 * MIB  # ~150 bytes per mesh: 200,000 meshes
+MAX_INDEX_ENTRIES = 200_000
+MAX_PATH_CHARS = 4096  # PATH_MAX on Linux
+RACY_NS = 2_000_000_000  # a file changed this recently when hashed is not indexed (FAT stamps are 2 s)
+_INT64 = 1 << 63
 
 
 def _version(dist: str) -> str:
@@ -180,3 +199,147 @@ def _facts(doc: Any, key: str, kind: str) -> MeshFacts | None:
         unit_meter=None if unit is None else float(unit),
         open_edges=doc["open_edges"],
     )
+
+
+# -- the stat index: (path, size, mtime, inode, ctime) -> content key --------------------------------
+
+Stat = tuple[int, int, int, int]  # st_size, st_mtime_ns, st_ino, st_ctime_ns
+
+
+def stat_of(st: os.stat_result) -> Stat:
+    """The stat data the index compares: what changes whenever a file's bytes are rewritten."""
+    return (st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns)
+
+
+_INDEXES: dict[Path, dict[str, tuple[Stat, str]]] = {}  # cache folder -> its index, read once
+_ADDED: dict[Path, dict[str, tuple[Stat, str]]] = {}  # cache folder -> entries not yet written
+_INDEX_LOCK = threading.Lock()
+_AT_EXIT: list[bool] = []
+
+
+def known_key(path: str, stat: Stat) -> str | None:
+    """The content key recorded for ``path`` while its stat data was ``stat``; None when the
+    index has none or the file changed since (any field differs)."""
+    root = folder()
+    if root is None:
+        return None
+    with _INDEX_LOCK:
+        index = _INDEXES.get(root)
+        if index is None:
+            index = _INDEXES[root] = _read_index(root)
+        entry = index.get(path)
+    return entry[1] if entry is not None and entry[0] == stat else None
+
+
+def remember(path: str, stat: Stat, key: str, hashed_at_ns: int) -> None:
+    """Record that ``path`` with ``stat`` held content ``key``, read at ``hashed_at_ns``
+    (``time.time_ns()`` before the read). A file changed within :data:`RACY_NS` of then is
+    left out: a second rewrite in the same time-stamp tick would look unchanged."""
+    root = folder()
+    if root is None or not _valid_entry(path, stat, key):
+        return
+    if max(stat[1], stat[3]) >= hashed_at_ns - RACY_NS:
+        return
+    with _INDEX_LOCK:
+        _INDEXES.setdefault(root, {})[path] = (stat, key)
+        _ADDED.setdefault(root, {})[path] = (stat, key)
+        if not _AT_EXIT:  # a caller that never calls save_index() still keeps what it hashed
+            _AT_EXIT.append(True)
+            atexit.register(save_index)
+
+
+def save_index() -> None:
+    """Write the entries this process added, merged into the index on disk (another process
+    may have added its own since it was read); atomic, and silent when unwritable."""
+    with _INDEX_LOCK:
+        pending = [(root, added) for root, added in _ADDED.items() if added]
+        _ADDED.clear()
+    for root, added in pending:
+        merged = _read_index(root)
+        merged.update(added)
+        if len(merged) > MAX_INDEX_ENTRIES:  # a cache folder shared by everything: start over
+            merged = dict(list(added.items())[-MAX_INDEX_ENTRIES:])
+        rows = [[p, *stat, key] for p, (stat, key) in merged.items()]
+        text = json.dumps({"schema": SCHEMA, "entries": rows}, allow_nan=False, separators=(",", ":"))
+        if len(text) <= MAX_INDEX_BYTES:
+            _write_atomic(root / INDEX, text)
+
+
+def forget() -> None:
+    """Drop what this process holds in memory (the tests' fresh process)."""
+    with _INDEX_LOCK:
+        _INDEXES.clear()
+        _ADDED.clear()
+
+
+def _read_index(root: Path) -> dict[str, tuple[Stat, str]]:
+    """The index in ``root``: every entry that is exactly what save_index() writes; nothing
+    when the file is missing, too large, not JSON or not the expected shape."""
+    raw = _read_at_most(root / INDEX, MAX_INDEX_BYTES)
+    if raw is None:
+        return {}
+    try:
+        doc = json.loads(raw, parse_constant=_no_constant)
+    except (ValueError, RecursionError):
+        return {}
+    if type(doc) is not dict or set(doc) != {"schema", "entries"} or doc["schema"] != SCHEMA:
+        return {}
+    rows = doc["entries"]
+    if type(rows) is not list or len(rows) > MAX_INDEX_ENTRIES:
+        return {}
+    out: dict[str, tuple[Stat, str]] = {}
+    for row in rows:
+        if type(row) is not list or len(row) != 6:
+            continue
+        path, size, mtime, ino, ctime, key = row
+        stat = (size, mtime, ino, ctime)
+        if _valid_entry(path, stat, key):
+            out[path] = (stat, key)
+    return out
+
+
+def _valid_entry(path: Any, stat: Any, key: Any) -> bool:
+    if type(path) is not str or not 0 < len(path) <= MAX_PATH_CHARS or not path.startswith("/") or "\0" in path:
+        return False
+    if any(type(v) is not int for v in stat) or type(key) is not str or not _KEY.fullmatch(key):
+        return False
+    size, mtime, ino, ctime = stat
+    return bool(0 <= size < _INT64 and 0 <= ino < _INT64 and -_INT64 <= mtime < _INT64 and -_INT64 <= ctime < _INT64)
+
+
+def _read_at_most(path: Path, limit: int) -> bytes | None:
+    """At most ``limit`` bytes of ``path`` without blocking (a FIFO reads as b""); None when
+    it cannot be opened or holds more."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except (OSError, ValueError):
+        return None
+    try:
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
+    data = b"".join(chunks)
+    return None if len(data) > limit else data
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as out:
+                out.write(text)
+            os.replace(tmp, path)  # atomic: a concurrent reader sees the old index or the new one
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except (OSError, ValueError):
+        return

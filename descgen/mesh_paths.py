@@ -55,21 +55,34 @@ def split_package_uri(name: str) -> tuple[str, str] | None:
 
 
 def resolve(
-    name: str, base: Path, root: Path, package_paths: Sequence[Path], packages: dict[str, Path | None] | None = None
+    name: str,
+    base: Path,
+    root: Path,
+    package_paths: Sequence[Path],
+    packages: dict[str, Path | None] | None = None,
+    folders: dict[str, str] | None = None,
 ) -> Resolved:
     """Resolve ``name`` as written in a file whose folder is ``base``. A relative name must
     stay inside ``root``; a ``package://`` name inside its package, found in ``package_paths``
-    (in order). ``packages`` memoises package name -> folder across the calls of one
-    description (searching the package paths is most of the cost). Never raises for a bad
-    name: a NUL byte, an over-long name or a link loop is a file that cannot be there."""
+    (in order). ``packages`` memoises package name -> folder and ``folders`` a folder's real
+    path across the calls of one description (searching the package paths and resolving
+    every folder of a path again are most of the cost). Never raises for a bad name: a NUL
+    byte, an over-long name or a link loop is a file that cannot be there."""
     try:
-        return _resolve(name, base, root, package_paths, {} if packages is None else packages)
+        return _resolve(
+            name, base, root, package_paths, {} if packages is None else packages, {} if folders is None else folders
+        )
     except (OSError, ValueError):
         return Resolved("missing")
 
 
 def _resolve(
-    name: str, base: Path, root: Path, package_paths: Sequence[Path], packages: dict[str, Path | None]
+    name: str,
+    base: Path,
+    root: Path,
+    package_paths: Sequence[Path],
+    packages: dict[str, Path | None],
+    folders: dict[str, str],
 ) -> Resolved:
     uri = split_package_uri(name)
     package = None
@@ -81,12 +94,12 @@ def _resolve(
         folder = packages[package]
         if folder is None:
             return Resolved("unresolved", package=package)
-        inside, target = folder, (folder / rest).resolve()
+        inside, target = str(folder), _realpath(os.path.join(folder, rest), folders)
     elif name.startswith("file://") or Path(name).is_absolute():
         return Resolved("escapes")
     else:
-        inside, target = root.resolve(), (base / name).resolve()
-    if not target.is_relative_to(inside):  # resolve() followed links: a link out is caught too
+        inside, target = _realpath(str(root), folders), _realpath(os.path.join(base, name), folders)
+    if not _within(target, inside):  # the real path: a link out is caught too
         return Resolved("escapes", package=package)
     try:
         st = os.stat(target)
@@ -95,10 +108,30 @@ def _resolve(
     problem = None
     if not stat.S_ISREG(st.st_mode):
         problem = "is not a regular file (a folder, FIFO or device)"
-        return Resolved("missing", target, package, problem)
+        return Resolved("missing", Path(target), package, problem)
     if st.st_size > MAX_MESH_BYTES:
         problem = f"is {st.st_size / 1e6:.1f} MB; a mesh is at most {MAX_MESH_BYTES // MIB} MiB"
-    return Resolved("ok", target, package, problem)
+    return Resolved("ok", Path(target), package, problem)
+
+
+def _realpath(path: str, folders: dict[str, str]) -> str:
+    """``os.path.realpath(path)`` (what ``Path.resolve()`` does) with the real path of its
+    folder memoised in ``folders``: a description's meshes share a few folders, and realpath
+    lstat()s every component of every path (~15 system calls a mesh). The last component is
+    still looked at each time: only when it is a link is the whole path resolved again."""
+    head, tail = os.path.split(path)
+    if tail in ("", ".", ".."):
+        return os.path.realpath(path)
+    real_head = folders.get(head)
+    if real_head is None:
+        real_head = folders[head] = os.path.realpath(head)
+    joined = os.path.join(real_head, tail)
+    return os.path.realpath(joined) if os.path.islink(joined) else joined
+
+
+def _within(path: str, folder: str) -> bool:
+    """``Path(path).is_relative_to(folder)`` for two real (absolute, normalised) paths."""
+    return path == folder or path.startswith(folder.rstrip("/") + "/")
 
 
 # --- audited descriptions -------------------------------------------------------------------------
@@ -125,10 +158,11 @@ def mesh_status(
     search = [*package_paths, base.parent, base]
     root = package_root(base)  # once per description, not per mesh
     packages: dict[str, Path | None] = {}
+    folders: dict[str, str] = {}
     for name in _mesh_names(robot):
         if name in status:
             continue
-        r = resolve(name, base, root, search, packages)
+        r = resolve(name, base, root, search, packages, folders)
         status[name] = r.state
         if r.state == "ok" and r.path is not None:
             files[name] = r.path

@@ -18,8 +18,10 @@ import hashlib
 import io
 import os
 import re
+import stat
 import struct
 import threading
+import time
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -68,7 +70,7 @@ class Loaded:
 
 
 _CACHE: dict[str, Loaded | MeshError] = {}  # sha256 of the bytes -> what they gave
-_BY_STAT: dict[tuple[str, int, int, int], str] = {}  # (path, inode, size, mtime) -> sha256
+_BY_STAT: dict[tuple[str, int, int, int, int], str] = {}  # (path, inode, size, mtime, ctime) -> sha256
 _LOCK = threading.Lock()
 
 
@@ -121,12 +123,24 @@ def measure(path: Path) -> MeshFacts:
     kind = path.suffix.lower().lstrip(".")
     if kind not in FORMATS:
         return MeshFacts(problem=f"'.{kind}' is not a mesh format descgen reads (STL, OBJ, DAE)")
-    seen = _stat_key(path)
+    st = _stat(path)
+    seen = _seen(path, st)
     with _LOCK:
         key = _BY_STAT.get(seen) if seen is not None else None
         known = _FACTS.get(key) if key is not None else None
     if known is not None:
         return known
+    if key is None and st is not None and stat.S_ISREG(st.st_mode) and st.st_size <= MAX_MESH_BYTES:
+        # unchanged since a run hashed it (the stat index): its facts without reading its bytes
+        indexed = mesh_cache.known_key(str(path), mesh_cache.stat_of(st))
+        facts = (_FACTS.get(indexed) or mesh_cache.get(indexed, kind)) if indexed is not None else None
+        if indexed is not None and facts is not None:
+            with _LOCK:
+                if seen is not None:
+                    _BY_STAT[seen] = indexed
+                _FACTS[indexed] = facts
+            return facts
+    hashed_at = time.time_ns()
     try:
         data = read_bounded(path, "mesh", MAX_MESH_BYTES)
     except InputError as exc:
@@ -136,6 +150,8 @@ def measure(path: Path) -> MeshFacts:
     if facts is None:
         facts = _measured(data, kind)
         mesh_cache.put(key, kind, facts)
+    if st is not None:
+        mesh_cache.remember(str(path), mesh_cache.stat_of(st), key, hashed_at)
     with _LOCK:
         if seen is not None:
             _BY_STAT[seen] = key
@@ -151,13 +167,20 @@ def _measured(data: bytes, kind: str) -> MeshFacts:
         return MeshFacts(problem=str(exc))
 
 
-def _stat_key(path: Path) -> tuple[str, int, int, int] | None:
-    """The same file, unchanged since it was hashed in this process: no re-read."""
+def _stat(path: Path) -> os.stat_result | None:
     try:
-        st = os.stat(path)
+        return os.stat(path)
     except (OSError, ValueError):
         return None
-    return (str(path), st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _seen(path: Path, st: os.stat_result | None) -> tuple[str, int, int, int, int] | None:
+    """The same file, unchanged since it was hashed in this process: no re-read."""
+    return None if st is None else (str(path), st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
+
+
+def _stat_key(path: Path) -> tuple[str, int, int, int, int] | None:
+    return _seen(path, _stat(path))
 
 
 def _content_key(data: bytes, kind: str) -> str:
@@ -335,9 +358,12 @@ def facts_of_robot(robot: Robot) -> dict[str, MeshFacts]:
         for seen, facts in _ROBOT_FACTS:
             if seen is robot:
                 return facts
+    from . import mesh_cache  # imports this module
+
     out: dict[str, MeshFacts] = {}
     for name, file in robot.mesh_files:
         out[name] = measure(Path(file))
+    mesh_cache.save_index()  # what was hashed here is known to the next run, even if this one is killed
     with _LOCK:
         _ROBOT_FACTS.insert(0, (robot, out))
         del _ROBOT_FACTS[4:]
@@ -361,4 +387,8 @@ def corners_in_metres(facts: MeshFacts, scale: Sequence[float]) -> np.ndarray | 
     unit = facts.unit_meter or 1.0
     lo = np.array(facts.lower) * unit * np.array(scale)
     hi = np.array(facts.upper) * unit * np.array(scale)
-    return np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+    corners: np.ndarray = np.where(_HIGH, hi, lo)  # corner (i, j, k) takes hi on the axes where its bit is set
+    return corners
+
+
+_HIGH = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=bool)

@@ -6,7 +6,9 @@ What it does
   1. `MoveItConfigsBuilder(ROBOT, package_name=ROBOT_moveit_config).to_moveit_configs()`
      against generated/ (ament_index_python is a stand-in mapping package names to folders).
   2. Compares every loaded dict with values computed here from the spec YAML (yaml + pint,
-     not descgen): robot_description (xacro) == the committed URDF, robot_description_semantic
+     not descgen): robot_description (xacro of the package's config/ROBOT.urdf.xacro, which the
+     builder prefers) == the committed URDF but for the mock hardware's initial values, which are
+     the initial state's (initial_positions.yaml), robot_description_semantic
      == the committed SRDF, kinematics, joint_limits (floats, accelerations), planning pipelines,
      moveit_controllers (action_ns, default), Pilz cartesian limits.
   3. Runs generate_launch_description() of every generated launch file (the moveit_configs_utils
@@ -212,7 +214,56 @@ def expected_pilz(spec: dict[str, Any]) -> dict[str, float]:
     return {k: si(given.get(k, PILZ_DEFAULTS[k]), u) for k, u in units.items()}
 
 
+def expected_initial_positions(spec: dict[str, Any]) -> dict[str, float]:
+    """The initial state's SI value per planning joint (moveit.initial_state, else the collision
+    matrix's default state; a group state names a known pose or lists joints); a joint the state
+    does not set gets MoveIt's default: 0, or the middle of its bounds when 0 is outside them."""
+    semantic = spec["semantic"]
+    name = spec["moveit"].get("initial_state") or semantic.get("collision_matrix", {}).get("default_state")
+    values: dict[str, Any] = {}
+    for state in semantic.get("group_states", []):
+        if state["name"] == name:
+            values = state.get("joints") or next(k for k in spec["known_poses"] if k["name"] == state["pose"])["joints"]
+    joints = {j["name"]: j for j in spec["joints"]}
+    out: dict[str, float] = {}
+    for joint in planning_joints(spec):
+        unit = "m" if joints[joint]["type"] == "prismatic" else "rad"
+        if joint in values:
+            out[joint] = si(values[joint], unit)
+            continue
+        limit = joints[joint]["limit"]
+        lower, upper = si(limit["lower"], unit), si(limit["upper"], unit)
+        out[joint] = 0.0 if lower <= 0.0 <= upper else (lower + upper) / 2
+    return out
+
+
 # ---------------------------------------------------------------- comparisons
+
+
+def mock_start(robot_description: str, urdf: bytes, want: dict[str, float]) -> list[str]:
+    """The builder's robot_description starts each planning joint's position state at the
+    initial state (issue 15: config/<robot>.urdf.xacro hands initial_positions.yaml to the
+    description's ros2_control Xacro), and with those params set back to the committed URDF's
+    text it equals that URDF: nothing else differs."""
+    parser = etree.XMLParser(remove_comments=True, remove_blank_text=True)
+    got = etree.fromstring(robot_description.encode(), parser)
+    plain = etree.fromstring(urdf, parser)
+    problems: list[str] = []
+    seen = set()
+    for j, p in zip(got.iterfind("ros2_control/joint"), plain.iterfind("ros2_control/joint"), strict=True):
+        path = "state_interface[@name='position']/param[@name='initial_value']"
+        for e, e0 in zip(j.iterfind(path), p.iterfind(path), strict=True):
+            name = j.get("name", "")
+            if name in want:
+                seen.add(name)
+                if not math.isclose(float(e.text or "nan"), want[name], rel_tol=1e-12, abs_tol=1e-15):
+                    problems.append(f"{name} starts at {e.text!r}, the state says {want[name]!r}")
+            elif e.text != e0.text:
+                problems.append(f"{name} starts at {e.text!r}, not the URDF's {e0.text!r}")
+            e.text = e0.text
+    problems += [f"{n}: no position initial_value" for n in sorted(set(want) - seen)]
+    rest = diff_xml(etree.tostring(got), etree.tostring(plain))
+    return problems + ([f"otherwise: {rest}"] if rest else [])
 
 
 def canonical(xml: str | bytes) -> list[tuple[str, tuple[tuple[str, str], ...], str]]:
@@ -269,9 +320,12 @@ class Report:
 
 def check_configs(configs: Any, spec: dict[str, Any], desc: Path, pkg: Path, report: Report) -> None:
     robot = spec["name"]
+    want = expected_initial_positions(spec)
     report.check(
-        f"robot_description == xacro(urdf/{robot}.urdf.xacro) == urdf/{robot}.urdf",
-        diff_xml(configs.robot_description["robot_description"], (desc / "urdf" / f"{robot}.urdf").read_bytes()),
+        f"robot_description == xacro(config/{robot}.urdf.xacro) == urdf/{robot}.urdf with the mock hardware at {want}",
+        mock_start(
+            configs.robot_description["robot_description"], (desc / "urdf" / f"{robot}.urdf").read_bytes(), want
+        ),
     )
     semantic = configs.robot_description_semantic["robot_description_semantic"]
     report.check(
@@ -406,7 +460,14 @@ def main(argv: list[str] | None = None) -> int:
     report = Report()
     configs: Any = None
     try:
-        configs = MoveItConfigsBuilder(robot, package_name=f"{robot}_moveit_config").to_moveit_configs()
+        builder = MoveItConfigsBuilder(robot, package_name=f"{robot}_moveit_config")
+        # the builder's own choice of URDF (name-mangled private attributes, moveit_configs_builder.py)
+        chosen = (builder._MoveItConfigsBuilder__urdf_package, builder._MoveItConfigsBuilder__urdf_file_path)
+        report.check(
+            f"the builder loads config/{robot}.urdf.xacro of the MoveIt package",
+            [] if chosen == (pkg, Path("config") / f"{robot}.urdf.xacro") else f"it loads {chosen}",
+        )
+        configs = builder.to_moveit_configs()
     except Exception as exc:
         report.check("MoveItConfigsBuilder(...).to_moveit_configs()", f"{type(exc).__name__}: {exc}")
     if configs is not None:

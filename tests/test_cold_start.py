@@ -20,7 +20,7 @@ HEAVY = {"trimesh", "scipy", "matplotlib", "pinocchio", "mujoco", "yourdfpy", "r
 
 # runs the commands in-process in a fresh interpreter and reports the top-level packages loaded
 _PROBE = """
-import json, sys
+import gc, json, sys
 from descgen.cli import main
 seen = {}
 for name, argv in (("help", ["--help"]), ("validate", ["validate", sys.argv[1]]), ("check", ["check", sys.argv[1]])):
@@ -30,7 +30,8 @@ for name, argv in (("help", ["--help"]), ("validate", ["validate", sys.argv[1]])
         code = exc.code
     else:
         code = 0
-    seen[name] = {"code": code, "modules": sorted({m.split(".")[0] for m in sys.modules})}
+    seen[name] = {"code": code, "modules": sorted({m.split(".")[0] for m in sys.modules}),
+                  "gc": [gc.isenabled(), gc.get_freeze_count()]}
 print("PROBE" + json.dumps(seen))
 """
 
@@ -61,6 +62,17 @@ def test_validate_imports_no_heavy_library(probe: dict[str, dict[str, object]]) 
     assert "pydantic" in loaded  # it did parse models
     assert "pint" not in loaded  # every quantity of the example is read without pint (units._simple_si)
     assert loaded & HEAVY == set()
+
+
+@pytest.mark.e2e
+def test_commands_leave_the_collector_on_with_their_imports_frozen(probe: dict[str, dict[str, object]]) -> None:
+    """validate and check import their modules with the collector paused (cli._settled_import):
+    it must be on again afterwards, and what the imports made frozen out of its traversal."""
+    assert probe["help"]["gc"] == [True, 0]  # --help imports nothing heavy: nothing frozen
+    enabled, frozen = probe["validate"]["gc"]  # type: ignore[misc]
+    assert enabled is True and frozen > 50_000  # pydantic and the spec models alone make more
+    enabled, after_check = probe["check"]["gc"]  # type: ignore[misc]
+    assert enabled is True and after_check > frozen  # check's own imports (generate) frozen too
 
 
 # what check must not pay for: proof 2 reads the URDF back with lxml (yourdfpy, and with it
@@ -190,3 +202,79 @@ def test_pint_is_imported_without_scipy_and_scipy_still_works_after() -> None:
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=60)
     assert done.stdout.strip() == "ok", done.stderr
+
+
+# --- check's proofs: urdfdom started first and collected last; the URDF rendered once --------
+
+
+def _example_plan_inputs() -> tuple[dict[str, str], object, Path]:
+    from descgen.generate import plan
+
+    p = plan(EXAMPLE)
+    return dict(p.files), p.robot, p.package_dir
+
+
+def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
+    from descgen import checks
+
+    require_tool("check_urdf")
+    files, robot, pkg = _example_plan_inputs()
+    rel = f"urdf/{robot.name}.urdf"  # type: ignore[attr-defined]
+    # a joint whose child link does not exist: urdfdom refuses it (reference/urdf.md)
+    files[rel] = files[rel].replace('<child link="tool_link"/>', '<child link="no_such_link"/>', 1)
+    assert "no_such_link" in files[rel]
+    named = checks.run_named(files, robot, pkg)  # type: ignore[arg-type]
+    assert [n for n, _ in named] == [n for n, _ in checks.CHECKS]  # the evidence page's order
+    by_name = dict(named)
+    urdfdom = by_name["urdfdom's check_urdf accepts the URDF"]
+    assert [f.code for f in urdfdom] == ["GEN021"]
+    assert "GEN021" not in {f.code for n, found in named if n != "urdfdom's check_urdf accepts the URDF" for f in found}
+
+
+def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A check_urdf that takes 1 s: started before the in-process proofs (the first of them waits
+    for its start stamp; run after them, it would stamp later), and its rejection is still reported."""
+    import time
+
+    from descgen import checks
+
+    files, robot, pkg = _example_plan_inputs()
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    started = tmp_path / "started"
+    stub = bin_dir / "check_urdf"
+    stub.write_text(f'#!/bin/sh\ndate +%s.%N > "{started}"\nsleep 1\necho "Error: planted"\nexit 3\n', encoding="utf-8")
+    stub.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}")
+    seen: list[float] = []
+
+    def first(files: dict[str, str], robot: object, where: Path) -> list[object]:
+        deadline = time.time() + 5
+        while not started.exists() and time.time() < deadline:  # the stub is already running
+            time.sleep(0.01)
+        seen.append(time.time())
+        return []
+
+    monkeypatch.setattr(checks, "CHECKS", [("first", first), *checks.CHECKS])
+    named = dict(checks.run_named(files, robot, pkg))  # type: ignore[arg-type]
+    assert started.exists() and seen and float(started.read_text()) <= seen[0]
+    found = named["urdfdom's check_urdf accepts the URDF"]
+    assert [f.code for f in found] == ["GEN021"] and "exit 3" in found[0].message and "planted" in found[0].message
+
+
+def test_the_urdf_rendered_alone_is_the_packages(monkeypatch: pytest.MonkeyPatch) -> None:
+    """plan renders the URDF alone for the collision matrix, then the package once: the URDF
+    alone is byte-identical to the package's, and rendering it computes no sweep evidence."""
+    from descgen.render import render_package
+    from descgen.sweep import evidence as sweep_evidence
+
+    _, robot, _ = _example_plan_inputs()
+    full = render_package(robot, EXAMPLE.name)  # type: ignore[arg-type]
+    rel = f"urdf/{robot.name}.urdf"  # type: ignore[attr-defined]
+
+    def refuse(robot: object) -> object:
+        raise AssertionError("sweep evidence computed for the URDF alone")
+
+    monkeypatch.setattr(sweep_evidence, "context", refuse)
+    alone = render_package(robot, EXAMPLE.name, only={rel})  # type: ignore[arg-type]
+    assert alone == {rel: full[rel]}

@@ -34,6 +34,7 @@ class Case:
     xacro: str
     controllers: str | None = None
     args: dict[str, str] = field(default_factory=dict)
+    launch_args: dict[str, str] = field(default_factory=dict)  # --launch-arg, for $(var) in the controllers
     # defects of the original that the spec keeps (validate fails there, as audit reports)
     defects: frozenset[str] = frozenset()
     slow: bool = False
@@ -45,8 +46,9 @@ CASES = (
         "rrbot+controllers",
         "ros2_control_demo_example_1/urdf/rrbot.urdf.xacro",
         "ros2_control_demo_example_1/config/rrbot_controllers.yaml",
-        # the joints are written $(var joint_prefix)1: a launch substitution, no URDF joint
-        defects=frozenset({"CTRL002", "CTRL009"}),
+        # the joints are written $(var joint_prefix)1; bringup/launch/rrbot.launch.py loads the file
+        # with allow_substs=True and declares joint_prefix with default_value="joint"
+        launch_args={"joint_prefix": "joint"},
     ),
     Case(
         "diffbot",
@@ -74,6 +76,7 @@ def _options(case: Case) -> Options:
         controllers=CORPUS / case.controllers if case.controllers else None,
         xacro_args=case.args,
         package_paths=(CORPUS,),
+        launch_args=case.launch_args,
     )
 
 
@@ -84,7 +87,9 @@ def _imported(case: Case) -> Outcome:
     if case.ident not in _IMPORTED:  # one import per case for the whole module
         # the spec lives outside this project (tmp_path), so it records no package_paths (IMP012);
         # generate and check get --package-path, as the issue asks
-        spec_name = str(Path(tempfile.gettempdir()) / "robot.yaml")
+        # (a folder of its own: the temp folder itself may hold this repository, e.g. a CI clone
+        # in /tmp, and then the corpus would be inside the spec's project)
+        spec_name = str(Path(tempfile.mkdtemp(prefix="descgen-import-")) / "robot.yaml")
         _IMPORTED[case.ident] = import_description(
             CORPUS / case.xacro, ImportOptions(_options(case), spec_name=spec_name)
         )
@@ -176,7 +181,10 @@ def test_the_generated_robot_is_the_original(case: Case, tmp_path: Path) -> None
         )
         assert back is not None and float(back.text) == float(e.text), (path, name, e.get("name"))
     if case.controllers:
-        original_ctl = yaml.safe_load((CORPUS / case.controllers).read_text())
+        text = (CORPUS / case.controllers).read_text()
+        for name, value in case.launch_args.items():  # what launch hands the controller manager
+            text = text.replace(f"$(var {name})", value)
+        original_ctl = yaml.safe_load(text)
         written_ctl = yaml.safe_load((package / "config" / "ros2_controllers.yaml").read_text())
         for name, entry in original_ctl.items():
             if name == "controller_manager" or "ros__parameters" not in entry:
@@ -222,6 +230,8 @@ def _row(case: Case) -> str:
     args = " ".join(f"`{k}:={v}`" for k, v in case.args.items()) or "–"
     n = len(rc.get("controllers", [])) if rc and case.controllers else 0
     controllers = f"{n} imported" if case.controllers else "–"
+    if case.launch_args:
+        controllers += " with " + " ".join(f"`--launch-arg {k}:={v}`" for k, v in case.launch_args.items())
     verdict = "proven" if outcome.proven else "differs" if outcome.imported.differences else "fails validate"
     if case.defects:
         verdict += f" (validate fails at {', '.join(sorted(case.defects))}, as audit reports)"

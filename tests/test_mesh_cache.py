@@ -23,6 +23,7 @@ def _forget() -> None:
     for memo in (meshes._FACTS, meshes._BY_STAT, meshes._CACHE):
         memo.clear()
     meshes._ROBOT_FACTS.clear()
+    mesh_cache.forget()
 
 
 @pytest.fixture
@@ -186,6 +187,136 @@ def test_an_unwritable_cache_folder_is_a_miss_not_an_error(tmp_path: Path, monke
     _forget()
     assert meshes.measure(_box(tmp_path / "box.stl", (1, 2, 3))).upper == (0.5, 1.0, 1.5)
     _forget()
+
+
+# -- the stat index: (path, size, mtime, inode, ctime) -> content key ---------------------------------
+
+
+def _no_hashing(monkeypatch: pytest.MonkeyPatch) -> None:
+    def refuse(*_: object) -> None:
+        raise AssertionError("a mesh was read and hashed although the stat index knew it")
+
+    monkeypatch.setattr(meshes, "_content_key", refuse)
+
+
+def _indexed(cache: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[Path, meshes.MeshFacts]:
+    """A box measured with the racy window off (a test's files are seconds old), index written."""
+    monkeypatch.setattr(mesh_cache, "RACY_NS", 0)
+    mesh = _box(tmp_path / "box.stl", (0.1, 0.2, 0.3))
+    truth = meshes.measure(mesh)
+    mesh_cache.save_index()
+    _forget()
+    return mesh, truth
+
+
+def _index_file(cache: Path) -> Path:
+    (index,) = cache.rglob(mesh_cache.INDEX)
+    return index
+
+
+def test_an_unchanged_file_is_answered_from_the_index_without_reading_it(cache, tmp_path, monkeypatch) -> None:
+    mesh, truth = _indexed(cache, tmp_path, monkeypatch)
+    rows = json.loads(_index_file(cache).read_text())["entries"]
+    st = mesh.stat()  # the row is the file's own stat data (an oracle outside descgen)
+    assert rows == [[str(mesh), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, _entries(cache)[0].stem]]
+    _no_hashing(monkeypatch)
+    _no_parsing(monkeypatch)
+    assert meshes.measure(mesh) == truth
+
+
+def test_a_rewritten_file_of_another_size_is_hashed_again(cache, tmp_path, monkeypatch) -> None:
+    mesh, _ = _indexed(cache, tmp_path, monkeypatch)
+    old = mesh.stat()
+    mesh.write_bytes(trimesh.creation.icosphere(subdivisions=1, radius=2.0).export(file_type="stl"))
+    os.utime(mesh, ns=(old.st_atime_ns, old.st_mtime_ns))  # even with the old time stamp
+    assert mesh.stat().st_size != old.st_size
+    facts = meshes.measure(mesh)
+    assert facts.triangles == 80  # an icosphere of one subdivision: 20 * 4 faces, not the box's 12
+    assert facts.upper == pytest.approx((2.0, 2.0, 2.0), abs=1e-6)
+
+
+def test_a_rewritten_file_with_another_mtime_is_hashed_again(cache, tmp_path, monkeypatch) -> None:
+    mesh, _ = _indexed(cache, tmp_path, monkeypatch)
+    old = mesh.stat()
+    _box(mesh, (1.0, 1.0, 1.0))  # same size in bytes (12 triangles), other corners
+    os.utime(mesh, ns=(old.st_atime_ns, old.st_mtime_ns + 1_000_000_000))
+    assert mesh.stat().st_size == old.st_size
+    assert meshes.measure(mesh).upper == (0.5, 0.5, 0.5)
+
+
+@pytest.mark.parametrize("field", range(4))
+def test_any_stat_field_that_differs_misses(cache, tmp_path, monkeypatch, field: int) -> None:
+    mesh, _ = _indexed(cache, tmp_path, monkeypatch)
+    stat = mesh_cache.stat_of(mesh.stat())
+    assert mesh_cache.known_key(str(mesh), stat) == _entries(cache)[0].stem
+    other = tuple(v + 1 if k == field else v for k, v in enumerate(stat))
+    assert mesh_cache.known_key(str(mesh), other) is None  # size, mtime, inode, ctime: each one counts
+
+
+def test_a_file_changed_just_before_it_was_hashed_is_not_indexed(cache, tmp_path) -> None:
+    # git's "racily clean" case: a second rewrite within the time-stamp granularity would keep
+    # every stat field, so a file this fresh is hashed again on the next run
+    meshes.measure(_box(tmp_path / "box.stl", (1, 2, 3)))
+    mesh_cache.save_index()
+    assert not list(cache.rglob(mesh_cache.INDEX))
+
+
+def _tamper_index(index: Path, how: str, mesh: Path) -> None:
+    doc = json.loads(index.read_text())
+    row = doc["entries"][0]
+    if how == "bad json":
+        index.write_text(index.read_text()[:-3])
+    elif how == "huge":
+        index.write_text(json.dumps({**doc, "pad": "x" * (mesh_cache.MAX_INDEX_BYTES + 1)}))
+    elif how == "list":
+        index.write_text("[]")
+    elif how == "deep":
+        index.write_text("[" * 100_000 + "]" * 100_000)
+    elif how == "other schema":
+        index.write_text(json.dumps({**doc, "schema": 0}))
+    elif how == "fifo":
+        index.unlink()
+        os.mkfifo(index)
+    elif how == "nan size":
+        index.write_text(index.read_text().replace(f",{row[1]},", ",NaN,", 1))
+    else:
+        bad = {
+            "string size": [row[0], str(row[1]), *row[2:]],
+            "bool inode": [*row[:3], True, *row[4:]],
+            "negative size": [row[0], -1, *row[2:]],
+            "relative path": ["box.stl", *row[1:]],
+            "short key": [*row[:5], row[5][:10]],
+            "short row": row[:5],
+        }[how]
+        index.write_text(json.dumps({**doc, "entries": [bad]}))
+
+
+HOW_INDEX = ["bad json", "huge", "list", "deep", "other schema", "fifo", "nan size"]
+HOW_INDEX += ["string size", "bool inode", "negative size", "relative path", "short key", "short row"]
+
+
+@pytest.mark.parametrize("how", HOW_INDEX)
+def test_a_tampered_index_is_ignored(cache, tmp_path, monkeypatch, how: str) -> None:
+    mesh, truth = _indexed(cache, tmp_path, monkeypatch)
+    index = _index_file(cache)
+    _tamper_index(index, how, mesh)
+    assert mesh_cache.known_key(str(mesh), mesh_cache.stat_of(mesh.stat())) is None
+    _forget()
+    hashed: list[bytes] = []
+    real = meshes._content_key
+    monkeypatch.setattr(meshes, "_content_key", lambda data, kind: hashed.append(data) or real(data, kind))
+    assert meshes.measure(mesh) == truth  # from the file's bytes, not from the index
+    assert hashed == [mesh.read_bytes()]
+
+
+def test_an_index_entry_pointing_at_another_meshes_key_is_what_stat_data_prevents(cache, tmp_path, monkeypatch):
+    # the index says which content a path held; once the file changes, the entry is not used
+    mesh, _ = _indexed(cache, tmp_path, monkeypatch)
+    index = _index_file(cache)
+    doc = json.loads(index.read_text())
+    doc["entries"][0][2] -= 5_000_000_000  # an mtime the file does not have
+    index.write_text(json.dumps(doc))
+    assert mesh_cache.known_key(str(mesh), mesh_cache.stat_of(mesh.stat())) is None
 
 
 # GEOM032 on alex_nub_hands needs its meshes' boxes; allegro's palm mesh bounds INER005; go1 has DAE

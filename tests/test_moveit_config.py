@@ -429,3 +429,102 @@ def test_builder_finds_our_files_by_its_own_lookup_rules() -> None:
     assert (DESC / sa["urdf"]["relative_path"]).is_file()
     assert (PKG / sa["srdf"]["relative_path"]).is_file()
     assert "xacro_args" not in sa["urdf"]  # the Xacro's defaults (hardware:=mock) are what the builder expands
+
+
+# --- the demo's mock hardware starts at the initial state (config/<robot>.urdf.xacro) -------------
+
+
+def _xacro(path: Path, packages: dict[str, Path], monkeypatch: pytest.MonkeyPatch, **args: str) -> etree._Element:
+    """``path`` expanded by the xacro library itself (not descgen's sandbox), ``$(find)``
+    answered from ``packages`` as ament_index would answer it in an install space."""
+    import xacro
+    import xacro.substitution_args as sa
+
+    monkeypatch.setattr(sa, "_eval_find", lambda pkg: str(packages[pkg]))
+    doc = xacro.process_file(str(path), mappings=dict(args))
+    return etree.fromstring(doc.toxml().encode("utf-8"), etree.XMLParser(remove_blank_text=True, remove_comments=True))
+
+
+def _initial_values(doc: etree._Element) -> dict[str, str]:
+    """joint -> text of its position state's initial_value param, read with lxml."""
+    out: dict[str, str] = {}
+    for j in doc.iterfind("ros2_control/joint"):
+        for e in j.iterfind("state_interface[@name='position']/param[@name='initial_value']"):
+            out[j.get("name", "")] = e.text or ""
+    return out
+
+
+def _canonical(doc: etree._Element) -> bytes:
+    return etree.tostring(doc, method="c14n")
+
+
+def test_builder_xacro_starts_the_mock_hardware_at_the_ready_state(monkeypatch: pytest.MonkeyPatch) -> None:
+    """What MoveItConfigsBuilder loads (config/<robot>.urdf.xacro exists, so it wins over
+    .setup_assistant: moveit_configs_builder.py jazzy) expanded by xacro: the arm joints start at
+    state 'ready' of specs/warehouse_arm.yaml (lift 150 mm, elbow -90 deg, the others 0), the
+    wheels keep their spec value 0, and nothing else differs from the description's URDF."""
+    wrapper = PKG / "config" / "warehouse_arm.urdf.xacro"
+    packages = {"warehouse_arm_description": DESC, "warehouse_arm_moveit_config": PKG}
+    doc = _xacro(wrapper, packages, monkeypatch)
+    got = {k: float(v) for k, v in _initial_values(doc).items()}
+    assert got == {
+        "left_wheel_joint": 0.0,
+        "right_wheel_joint": 0.0,
+        "lift_joint": 0.15,
+        "shoulder_pan_joint": 0.0,
+        "shoulder_lift_joint": 0.0,
+        "elbow_joint": -math.pi / 2,
+    }
+    plain = etree.parse(str(DESC / "urdf" / "warehouse_arm.urdf"), etree.XMLParser(remove_blank_text=True))
+    urdf = plain.getroot()
+    etree.strip_tags(urdf, etree.Comment)
+    for j in doc.iterfind("ros2_control/joint"):
+        for e in j.iterfind("state_interface[@name='position']/param[@name='initial_value']"):
+            e.text = "0"  # the one intended difference, undone
+    assert _canonical(doc) == _canonical(urdf)
+
+
+def test_description_xacro_alone_keeps_the_spec_initial_values(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The plain description package does not change: without initial_positions_file the
+    ros2_control Xacro gives the spec's initial values (0), byte-equal to the committed URDF."""
+    xacro_file = DESC / "urdf" / "warehouse_arm.urdf.xacro"
+    doc = _xacro(xacro_file, {"warehouse_arm_description": DESC}, monkeypatch)
+    assert set(_initial_values(doc).values()) == {"0"}
+    urdf = etree.parse(str(DESC / "urdf" / "warehouse_arm.urdf"), etree.XMLParser(remove_blank_text=True)).getroot()
+    etree.strip_tags(urdf, etree.Comment)
+    assert _canonical(doc) == _canonical(urdf)
+    # and the arg works on its own: a team's own file (a joint it does not name keeps 0)
+    assert "initial_positions_file" in xacro_file.with_name("warehouse_arm.ros2_control.xacro").read_text()
+
+
+def test_hostile_joint_name_reaches_the_mock_start_intact(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A joint name with a quote, a backslash and braces (all legal for ROS; '}' would end
+    xacro's ${}) is looked up as itself: the mock hardware starts it at state 'home' (30 deg)."""
+    hostile = "j1'}{\\x"
+    spec, out = _spec(tmp_path, _renamed(hostile)), tmp_path / "out"
+    assert main(["generate", str(spec), "--out", str(out)]) == 0
+    packages = {
+        "mini_arm_description": out / "mini_arm_description",
+        "mini_arm_moveit_config": out / "mini_arm_moveit_config",
+    }
+    doc = _xacro(out / "mini_arm_moveit_config" / "config" / "mini_arm.urdf.xacro", packages, monkeypatch)
+    got = {k: float(v) for k, v in _initial_values(doc).items()}
+    assert got == {hostile: math.radians(30), "j2": 0.01}
+
+
+def test_check_refuses_a_template_that_drops_the_initial_positions(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A team's override of the ros2_control Xacro that writes fixed initial values: the builder
+    would start the demo at 0, so generate stops with GEN093 at the MoveIt package's Xacro."""
+    templates = tmp_path / "templates"
+    templates.mkdir()
+    source = (ROOT / "templates" / "robot.ros2_control.xacro.j2").read_text(encoding="utf-8")
+    assert "{% set initial_from_file = true %}" in source
+    (templates / "robot.ros2_control.xacro.j2").write_text(source.replace("{% set initial_from_file = true %}", ""))
+    out = tmp_path / "out"
+    assert main(["generate", str(_spec(tmp_path)), "--out", str(out), "--templates", str(templates)]) != 0
+    err = capsys.readouterr().err
+    assert "error[GEN093]" in err and "mini_arm.urdf.xacro" in err and "j1" in err
+    assert "Traceback" not in err
+    assert not (out / "mini_arm_moveit_config").exists()

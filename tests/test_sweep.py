@@ -47,27 +47,31 @@ def _rot_y(angle: float, length: float) -> tuple[float, float]:
 
 
 def test_elbow_moves_tool_by_hand(example: dict) -> None:
-    # state ready: elbow from -150 deg to +150 deg; the tool is 250 mm along the forearm (M22)
-    lo, hi = _rot_y(math.radians(-150), 0.25), _rot_y(math.radians(150), 0.25)
+    # elbow range -150..150 deg is more than half a turn, so the direction is a quarter turn from
+    # the state: ready has the elbow at -90 deg; the tool is 250 mm along the forearm (M22)
+    lo, hi = _rot_y(math.radians(-90), 0.25), _rot_y(0.0, 0.25)
     d = _moved(example, "elbow_joint", "tool_link")
-    assert d == pytest.approx([hi[0] - lo[0], 0.0, hi[1] - lo[1]], abs=1e-9)  # (0, 0, -0.25)
-    assert _joint(example, "elbow_joint")["direction"] == "positive elbow_joint moves tool_link -z 250 mm"
+    assert d == pytest.approx([hi[0] - lo[0], 0.0, hi[1] - lo[1]], abs=1e-9)  # (0.25, 0, -0.25)
+    assert _joint(example, "elbow_joint")["direction"] == (
+        "positive elbow_joint moves tool_link +x 250 mm, -z 250 mm over a quarter turn"
+    )
     assert _joint(example, "elbow_joint")["axis_root"] == pytest.approx([0, 1, 0], abs=1e-12)
 
 
 def test_shoulder_lift_tips_the_arm_down_by_hand(example: dict) -> None:
-    # M19: positive tips the arm down; upper arm 300 mm (M20), forearm 250 mm at elbow -90 deg (ready)
+    # M19: positive tips the arm down; upper arm 300 mm (M20), forearm 250 mm at elbow -90 deg (ready);
+    # the range -100..100 deg is more than half a turn: a quarter turn from the state (0 deg)
     def tool(phi: float) -> tuple[float, float]:
         ux, uz = _rot_y(phi, 0.3)
         fx, fz = _rot_y(phi - math.pi / 2, 0.25)
         return ux + fx, uz + fz
 
-    lo, hi = tool(math.radians(-100)), tool(math.radians(100))
+    lo, hi = tool(0.0), tool(math.pi / 2)
     d = _moved(example, "shoulder_lift_joint", "tool_link")
-    assert d == pytest.approx([hi[0] - lo[0], 0.0, hi[1] - lo[1]], abs=1e-9)
+    assert d == pytest.approx([hi[0] - lo[0], 0.0, hi[1] - lo[1]], abs=1e-9)  # (-0.05, 0, -0.55)
     assert d[2] < -0.5  # down
     assert _joint(example, "shoulder_lift_joint")["direction"].startswith(
-        "positive shoulder_lift_joint moves tool_link -z 591 mm, +x 492 mm"
+        "positive shoulder_lift_joint moves tool_link -z 550 mm, -x 50 mm"
     )
 
 
@@ -95,7 +99,7 @@ def test_lift_moves_everything_above_it_up(example: dict) -> None:
 
 def test_evidence_file_says_the_same(example: dict) -> None:
     text = (ROOT / "generated" / "warehouse_arm_description" / "evidence" / "sweep.md").read_text()
-    assert "positive elbow\\_joint moves tool\\_link -z 250 mm" in text
+    assert "positive elbow\\_joint moves tool\\_link +x 250 mm, -z 250 mm over a quarter turn" in text
     assert "positive lift\\_joint moves tool\\_link +z 300 mm" in text
 
 
@@ -281,3 +285,38 @@ def test_hostile_names_stay_data(tmp_path: Path) -> None:
     urdf.write_text(urdf.read_text().replace("arm_link", "arm--link&lt;x&gt;"))
     _, doc, _ = _json(urdf, "--srdf", srdf)
     assert _joint(doc, "turn")["collisions"][0]["link2"] == "arm--link<x>"
+
+
+TURN = """<robot name="turn">
+  <link name="base_link"/><link name="a"/><link name="tip"/>
+  <joint name="j" type="revolute">
+    <parent link="base_link"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/>
+  </joint>
+  <joint name="t" type="fixed"><parent link="a"/><child link="tip"/><origin xyz="1 0 0"/></joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("lower", "upper", "expected", "between"),
+    [
+        # UR-style -360..360 deg: both limits are one pose, so the direction is a quarter turn from
+        # zero: tip (1, 0, 0) -> (0, 1, 0), by hand
+        (-2 * math.pi, 2 * math.pi, [-1.0, 1.0, 0.0], [0.0, math.pi / 2]),
+        # a 270 deg range starting at zero: still a quarter turn, inside the limits
+        (0.0, 1.5 * math.pi, [-1.0, 1.0, 0.0], [0.0, math.pi / 2]),
+        # up to half a turn the chord is the direction: -75 -> 75 deg moves the tip +y 2 sin 75
+        (-math.radians(75), math.radians(75), [0.0, 2 * math.sin(math.radians(75)), 0.0], [-1.309, 1.309]),
+    ],
+)
+def test_direction_of_a_wide_revolute_is_a_quarter_turn(
+    tmp_path: Path, lower: float, upper: float, expected: list[float], between: list[float]
+) -> None:
+    urdf = tmp_path / "turn.urdf"
+    urdf.write_text(TURN.format(lower=lower, upper=upper))
+    code, doc, err = _json(urdf)
+    assert code == 0, err
+    assert _moved(doc, "j", "tip") == pytest.approx(expected, abs=1e-9)
+    assert _joint(doc, "j")["displacement_between"] == pytest.approx(between, abs=1e-3)
+    assert ("over a quarter turn" in _joint(doc, "j")["direction"]) == (between[0] == 0.0)

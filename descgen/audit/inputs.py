@@ -27,6 +27,7 @@ class Options:
     package_paths: Sequence[Path] = ()
     trust_xacro: bool = False  # expand with xacro's own evaluator (runs the file's Python)
     moveit_config: Path | None = None  # a MoveIt config package (MOVEIT rules; descgen/audit/moveit_config.py)
+    launch_args: Mapping[str, str] = field(default_factory=dict)  # $(var NAME) in the controllers YAML
 
 
 def kind_of(path: Path) -> str:
@@ -84,7 +85,9 @@ def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Findin
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
         controllers, rate, more = read_controllers_text(
-            _read(options.controllers, "controllers YAML").decode("utf-8", "replace"), str(options.controllers)
+            _read(options.controllers, "controllers YAML").decode("utf-8", "replace"),
+            str(options.controllers),
+            options.launch_args,
         )
         found += more
         rc = robot.ros2_control or Ros2Control("", where=Where(str(options.controllers)))

@@ -17,7 +17,7 @@ from .known_poses import known_poses
 from .package import package_xml
 from .semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
 from .urdf_roundtrip import urdf_roundtrip, urdf_roundtrip_yourdfpy
-from .urdfdom import check_urdf
+from .urdfdom import check_urdf, start_check_urdf
 from .xacro_expand import xacro_matches_urdf, xacro_variants_match
 
 __all__ = [
@@ -31,6 +31,7 @@ __all__ = [
     "package_xml",
     "ros2_control_roundtrip",
     "run_all",
+    "run_named",
     "srdf_roundtrip",
     "urdf_roundtrip",
     "urdf_roundtrip_yourdfpy",
@@ -62,10 +63,27 @@ THOROUGH: list[tuple[str, Check]] = [
 ]
 
 
+# checks that run in another process: started before the in-process ones, collected after them
+Start = Callable[[Files, Robot, Path], Callable[[], list[Finding]]]
+_STARTS: dict[Check, Start] = {check_urdf: start_check_urdf}
+
+
+def run_named(
+    files: Files, robot: Robot, where: Path, thorough: bool = False
+) -> tuple[tuple[str, tuple[Finding, ...]], ...]:
+    """Every check (and ``THOROUGH`` too when asked), each one's findings by its name, in
+    ``CHECKS`` order; ``where`` is the package folder the files are destined for (for
+    messages). Each proof runs exactly as alone: only the order of waiting changes."""
+    chosen = [*CHECKS, *(THOROUGH if thorough else [])]
+    pending = {name: _STARTS[check](files, robot, where) for name, check in chosen if check in _STARTS}
+    done: dict[str, list[Finding]] = {}
+    try:
+        done |= {name: check(files, robot, where) for name, check in chosen if name not in pending}
+    finally:  # waited for even when an in-process check raised: no process or scratch file left
+        done |= {name: collect() for name, collect in pending.items()}
+    return tuple((name, tuple(done[name])) for name, _ in chosen)
+
+
 def run_all(files: Files, robot: Robot, where: Path, thorough: bool = False) -> list[Finding]:
-    """Every check (and ``THOROUGH`` too when asked); ``where`` is the package folder the
-    files are destined for (for messages)."""
-    out: list[Finding] = []
-    for _, check in [*CHECKS, *(THOROUGH if thorough else [])]:
-        out.extend(check(files, robot, where))
-    return out
+    """Every check's findings, in ``CHECKS`` order (run_named without the names)."""
+    return [f for _, found in run_named(files, robot, where, thorough) for f in found]

@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 from ..findings import Finding, Where
@@ -17,37 +18,58 @@ from ..model import Robot
 
 
 def check_urdf(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
+    return start_check_urdf(files, robot, where)()
+
+
+def start_check_urdf(files: dict[str, str], robot: Robot, where: Path) -> Callable[[], list[Finding]]:
+    """Start ``check_urdf`` and return what waits for it and judges its output: the caller
+    runs its in-process proofs meanwhile (a second core is not idle while urdfdom loads)."""
     rel = f"urdf/{robot.name}.urdf"
     loc = Where(str(where / rel))
     tool = shutil.which("check_urdf")
     if tool is None:
         required = os.environ.get("DESCGEN_REQUIRE_TOOLS") == "1"
-        return [
-            Finding(
-                "GEN020",
-                "error" if required else "info",
-                "check_urdf (urdfdom) is not installed: the URDF was not checked by urdfdom",
-                "install Debian's liburdfdom-tools",
-                "file:" + rel,
-                loc,
-            )
-        ]
+        missing = Finding(
+            "GEN020",
+            "error" if required else "info",
+            "check_urdf (urdfdom) is not installed: the URDF was not checked by urdfdom",
+            "install Debian's liburdfdom-tools",
+            "file:" + rel,
+            loc,
+        )
+        return lambda: [missing]
     with tempfile.NamedTemporaryFile("w", suffix=".urdf", delete=False, encoding="utf-8") as fh:
         fh.write(files[rel])
         path = fh.name
     try:
-        r = subprocess.run([tool, path], capture_output=True, text=True, timeout=120)
-    finally:
+        proc = subprocess.Popen([tool, path], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    except BaseException:
         os.unlink(path)
+        raise
+
+    def collect() -> list[Finding]:
+        try:
+            out, err = proc.communicate(timeout=120)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            out, err = proc.communicate()
+        finally:
+            os.unlink(path)
+        return _judged(proc.returncode, out, err, rel, loc)
+
+    return collect
+
+
+def _judged(code: int, out: str, err: str, rel: str, loc: Where) -> list[Finding]:
     # urdfdom logs some errors without failing (reference/urdf.md): treat them as failures
-    logged = [ln for ln in (r.stdout + r.stderr).splitlines() if "Error" in ln or "error" in ln.split(":")[0]]
-    if r.returncode != 0 or logged:
-        detail = "; ".join(logged[:3]) or (r.stdout + r.stderr).strip()[:300]
+    logged = [ln for ln in (out + err).splitlines() if "Error" in ln or "error" in ln.split(":")[0]]
+    if code != 0 or logged:
+        detail = "; ".join(logged[:3]) or (out + err).strip()[:300]
         return [
             Finding(
                 "GEN021",
                 "error",
-                f"check_urdf rejected the URDF (exit {r.returncode}): {detail}",
+                f"check_urdf rejected the URDF (exit {code}): {detail}",
                 "the URDF template or the model is broken",
                 "file:" + rel,
                 loc,

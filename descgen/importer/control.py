@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -26,12 +26,12 @@ from lxml import etree
 
 from .. import derive
 from .. import model as m
-from ..findings import Finding, Where
+from ..findings import Finding, InputError, Where
+from ..readers.controllers import load_substituted
 from ..safeio import read_bounded
 from ..spec.convert import EFFORT, POSITION, VELOCITY
 from ..spec.models import CALIBRATABLE, INTERFACE_PATTERN, NAME_PATTERN
 from ..xmlcompare import line_of
-from ..yamlsource import loads
 from .spec import SpecWriter, number
 
 Data = dict[str, Any]
@@ -368,15 +368,48 @@ def _not_imported(what: str, where: Where, subject: str) -> Finding:
     )
 
 
-def read_controllers(path: Path, w: SpecWriter) -> Controllers:
+def _substituted(text: str, shown: str, launch_args: Mapping[str, str] | None) -> tuple[Any, list[Finding]]:
+    """The controllers file after its ``$(var NAME)`` launch substitutions (readers/launch_subst.py)
+    and an IMP031 per substitution; InputError (IMP032) when one has no value or is not
+    evaluated: the spec's joint names must be real joints, never the ``$(var ...)`` text."""
+    doc, sites, unresolved = load_substituted(text, shown, launch_args)
+    if unresolved:
+        raise InputError(
+            [
+                Finding(
+                    "IMP032",
+                    "error",
+                    f"cannot import the controllers: {f.message}",
+                    f.hint if f.code == "CTRL052" else "write the value into the file, or import without --controllers",
+                    "controllers",
+                    f.where,
+                )
+                for f in unresolved
+            ]
+        )
+    report = [
+        _finding(
+            "IMP031",
+            "info",
+            f"launch substitution '{site.text}' is imported as {site.value!r}",
+            "the spec holds the substituted names; import again with other --launch-arg values for another launch",
+            "controllers",
+            site.where,
+        )
+        for site in sites
+    ]
+    return doc, report
+
+
+def read_controllers(path: Path, w: SpecWriter, launch_args: Mapping[str, str] | None = None) -> Controllers:
     """The controller_manager YAML as the spec's controllers: each controller's type (classic
     ``controller_manager.ros__parameters.<name>.type`` or ``<name>.ros__parameters.type``) and
     parameters, the update rate; diff_drive's wheel_separation/wheel_radius as ``calibrated``
     values (the file's, with its line: generate writes them instead of the URDF-derived ones)."""
     shown = str(path)
     text = read_bounded(path, "controllers YAML", display=shown).decode("utf-8", "replace")
-    doc = loads(text, shown)
-    out = Controllers(text=text)
+    doc, substituted = _substituted(text, shown, launch_args)
+    out = Controllers(text=doc.text, report=substituted)  # the round trip compares the substituted text
     data = doc.data if isinstance(doc.data, dict) else {}
 
     def src(p: tuple[str | int, ...]) -> str:
@@ -507,6 +540,7 @@ def import_control(
     where: Callable[[etree._Element], Where],
     controllers: Path | None,
     xacro_args: dict[str, str],
+    launch_args: Mapping[str, str] | None = None,
 ) -> Imported:
     """The spec's ros2_control section for ``root``'s blocks and ``controllers`` (or why not)."""
     blocks = root.findall("ros2_control")
@@ -530,7 +564,7 @@ def import_control(
     first, *rest = [block_data(b, robot, w, source) for b in blocks]
     out = Imported(blocks=tuple(etree.tostring(b, encoding="unicode", with_tail=False) for b in blocks))
     data: Data = {k: v for k, v in first.items() if k != "source"}
-    ctl = read_controllers(controllers, w) if controllers is not None else None
+    ctl = read_controllers(controllers, w, launch_args) if controllers is not None else None
     rate = ctl.update_rate if ctl is not None and ctl.update_rate is not None else None
     data["update_rate"] = f"{number(float(rate if rate is not None else DEFAULT_UPDATE_RATE))} Hz"
     if rest:

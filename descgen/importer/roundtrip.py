@@ -80,12 +80,21 @@ def _finding(message: str, where: Where) -> Finding:
     )
 
 
-def prove(spec_text: str, ours: m.Robot, spec_file: str, ctl: control.Imported | None = None) -> list[Finding]:
+def prove(
+    spec_text: str,
+    ours: m.Robot,
+    spec_file: str,
+    ctl: control.Imported | None = None,
+    variants: dict[str, tuple[str, ...]] | None = None,
+) -> list[Finding]:
     """Differences between the description and what its spec generates (empty: proven).
 
     With ``ctl``, its ``<ros2_control>`` blocks are compared as ros2_control reads them
     (:func:`control.block_differences`) and the imported controllers with the generated
     config/ros2_controllers.yaml (:func:`control.controllers_differences`).
+
+    With ``variants`` (hardware variant name -> that expansion's blocks), the generated Xacro
+    expanded with ``hardware:=<name>`` must give each variant's blocks and the same robot.
 
     InputError when the spec does not load: the description's own defects (a missing
     limit, an unreadable value) make the spec fail validate at the same elements."""
@@ -104,6 +113,8 @@ def prove(spec_text: str, ours: m.Robot, spec_file: str, ctl: control.Imported |
         found += [_finding(msg, where) for msg in _control_differences(ctl, ours, urdf)]
         if ctl.controllers is not None and ctl.controllers.names:
             found += [_finding(msg, Where("config/ros2_controllers.yaml")) for msg in _controllers(ctl, ours, files)]
+    for name, blocks in (variants or {}).items():
+        found += _variant_differences(files, loaded.robot, name, blocks, ours)
     if ours.semantic is not None:
         srdf_name = f"srdf/{loaded.robot.name}.srdf"
         if srdf_name not in files:
@@ -114,6 +125,27 @@ def prove(spec_text: str, ours: m.Robot, spec_file: str, ctl: control.Imported |
             _diff(ours.semantic, _own_pairs(sem, len(ours.semantic.disabled_collisions)), "srdf", out)
             found += [_finding(msg, Where(srdf_name)) for msg in out]
     return found
+
+
+def _variant_differences(
+    files: dict[str, str], spec_robot: m.Robot, name: str, blocks: tuple[str, ...], ours: m.Robot
+) -> list[Finding]:
+    """The generated Xacro with ``hardware:=<name>`` against that variant's original expansion:
+    the robot as the reader sees it, and the blocks as ros2_control reads them."""
+    from ..checks.xacro_expand import expand_with
+    from ..render.context import package_name
+
+    xacro_path = f"urdf/{spec_robot.name}.urdf.xacro"
+    where = Where(f"{xacro_path} (hardware:={name})")
+    try:
+        text, _ = expand_with(files, xacro_path, package_name(spec_robot), {"hardware": name})
+    except InputError as exc:
+        return [_finding(f"xacro hardware:={name} failed: {exc.findings[0].message}", where)]
+    back, _ = read_urdf_text(text.encode("utf-8"), str(where))
+    messages = model_differences(dataclasses.replace(ours, ros2_control=None), back)
+    written = _parse(text).findall("ros2_control")
+    messages += control.block_differences([_parse(x) for x in blocks], written, ours)
+    return [_finding(f"hardware:={name}: {msg}", where) for msg in messages]
 
 
 def _own_pairs(sem: m.Semantic, n: int) -> m.Semantic:

@@ -24,7 +24,7 @@ from ..readers.urdf import element_sources, parse_xml, read_urdf_text
 from ..readers.xacro_file import expand_located
 from ..safeio import check_file, read_bounded
 from ..xmlcompare import line_of
-from . import control, passthrough
+from . import control, passthrough, variants
 from .packages import package_name, package_paths, with_package_name
 from .poses import known_poses
 from .quantity import Units
@@ -37,6 +37,17 @@ class ImportOptions:
     description: Options = field(default_factory=Options)
     units: Units = field(default_factory=Units)
     spec_name: str = "robot.yaml"  # the spec's file name, for messages about it
+    variants: tuple[variants.Variant, ...] = ()  # --variant: hardware variants of a Xacro
+
+
+@dataclass(frozen=True)
+class Variants:
+    """What the variants' expansions give the spec and the round trip."""
+
+    hardware: dict[str, dict[str, Any]]  # block name -> the spec's hardware: (mock + variants)
+    mock_blocks: tuple[str, ...]  # what the generated URDF (the mock variant) must give back
+    others: dict[str, tuple[str, ...]]  # gazebo/real -> their original blocks
+    report: Finding
 
 
 @dataclass
@@ -50,6 +61,7 @@ class Imported:
     control: control.Imported = field(default_factory=lambda: control.Imported())  # ros2_control: and controllers
     structured: bool = False  # parts: or sensors: written
     spec_name: str = "robot.yaml"
+    variants: Variants | None = None
 
 
 def _finding(code: str, severity: str, message: str, hint: str, subject: str, where: Where) -> Finding:
@@ -197,7 +209,7 @@ def _semantic(srdf: Path, robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     return dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name)), found
 
 
-def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Imported:
+def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Variants | None = None) -> Imported:
     """Read ``path`` and write its spec text; the round trip is :func:`prove`. With
     ``structured``, cameras and repeated parts are written as ``sensors:`` and ``parts:``."""
     from ..audit.inputs import audit
@@ -224,9 +236,12 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Import
         lambda e: located.get(e) or Where(shown, line_of(e)),
         opts.description.controllers,
         dict(opts.description.xacro_args),
+        opts.description.launch_args,
     )
     if ctl.data is not None:  # the blocks are in ros2_control:, not in pass-through
         kept = [k for k in kept if k.tag != "ros2_control"]
+    if hv is not None:
+        ctl = _with_variants(ctl, hv, Where(shown))
     report += ctl.report
     robot = dataclasses.replace(robot, passthrough=tuple(k.xml for k in kept), ros2_control=None)
     report += [
@@ -273,6 +288,72 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True) -> Import
         control=ctl,
         structured=structured,
         spec_name=opts.spec_name,
+        variants=hv,
+    )
+
+
+def _with_variants(ctl: control.Imported, hv: Variants, where: Where) -> control.Imported:
+    """Each block's hardware as the variants give it; the mock blocks are what the generated
+    URDF must give back. IMP030 says so instead of IMP020's "one variant"."""
+    if ctl.data is None:
+        why = next((f.message for f in ctl.report if f.code == "IMP021"), "it stays in passthrough:")
+        raise InputError(
+            [
+                _finding(
+                    "IMP029",
+                    "error",
+                    f"the hardware variants cannot be imported: {why}",
+                    "import one variant (--xacro-arg) and keep the block in passthrough:, or simplify the block",
+                    "ros2_control",
+                    where,
+                )
+            ]
+        )
+    data = dict(ctl.data)
+    data["hardware"] = hv.hardware[data["name"]]
+    if "blocks" in data:
+        data["blocks"] = [b | {"hardware": hv.hardware[b["name"]]} for b in data["blocks"]]
+    report = [f for f in ctl.report if f.code != "IMP020"] + [hv.report]
+    return dataclasses.replace(ctl, data=data, blocks=hv.mock_blocks, report=report)
+
+
+def expand_variants(path: Path, opts: ImportOptions) -> tuple[ImportOptions, Variants]:
+    """Expand the Xacro once per variant; the same robot in each (IMP028), hardware the spec
+    can hold under each name (IMP029). Returns the options of the base variant's expansion."""
+    chosen = opts.variants
+    variants.check_set(chosen)
+    where = Where(str(path))
+    if kind_of(path) != "xacro":
+        raise InputError(
+            [
+                _finding(
+                    "IMP027",
+                    "error",
+                    "--variant selects Xacro arguments, but this is not a Xacro",
+                    "leave --variant out for a URDF",
+                    "option",
+                    where,
+                )
+            ]
+        )
+    common = dict(opts.description.xacro_args)
+
+    def options(v: variants.Variant) -> ImportOptions:
+        return dataclasses.replace(
+            opts, description=dataclasses.replace(opts.description, xacro_args=common | dict(v.args))
+        )
+
+    ex = tuple(variants.expanded(v, read(path, options(v).description)[0]) for v in chosen)
+    first = next(e for e in ex if e.variant == variants.base(chosen))
+    for e in ex:
+        if e is not first:
+            variants.same_robot(first, e, where)
+    mock = next(e for e in ex if e.variant.name == "mock")
+    return options(first.variant), Variants(
+        variants.hardware(ex, where),
+        variants.block_xml(mock),
+        {e.variant.name: variants.block_xml(e) for e in ex if e.variant.name != "mock"},
+        variants.report(ex, where),
     )
 
 
@@ -422,10 +503,13 @@ def import_description(path: Path, opts: ImportOptions) -> Outcome:
     Parts and cameras are written only in a spec that is proven: when it is not, the flat
     spec is written instead, so the round trip proves it or validate fails at the very
     elements of the description (a part would fold its instances' defects into one)."""
-    outcome = _proved(describe(opts, path))
+    hv = None
+    if opts.variants:
+        opts, hv = expand_variants(path, opts)
+    outcome = _proved(describe(opts, path, hv=hv))
     if outcome.proven or not outcome.imported.structured:
         return outcome
-    flat = _proved(describe(opts, path, structured=False))
+    flat = _proved(describe(opts, path, structured=False, hv=hv))
     if not outcome.invalid:
         flat.imported.report.append(_unstructured(len(outcome.imported.differences), Where(opts.spec_name)))
     return flat
@@ -435,7 +519,8 @@ def _proved(imported: Imported) -> Outcome:
     from .roundtrip import prove
 
     try:
-        imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name, imported.control)
+        others = imported.variants.others if imported.variants is not None else None
+        imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name, imported.control, others)
     except InputError as exc:
         invalid = [
             dataclasses.replace(

@@ -2,21 +2,25 @@
 parser (yaml.safe_load, ast.parse, catkin_pkg) and compared with the model.
 
 A YAML value MoveIt declares as a double must read back as a float (GEN091); every other
-difference is GEN090; a file that does not parse is GEN092.
+difference is GEN090; a file that does not parse is GEN092. config/<robot>.urdf.xacro is
+expanded with xacro and its mock hardware's initial values compared with the initial state (GEN093).
 """
 
 from __future__ import annotations
 
 import ast
 import dataclasses
+import math
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import yaml
+from lxml import etree
 
 from .. import model as m
-from ..findings import Finding, Where
+from ..findings import Finding, InputError, Where
 from . import derive
 from .render import moveit_package_name
 
@@ -56,7 +60,11 @@ class _Proof:
             self.fail("GEN090", rel, f"{key} is {got!r}, the model says {want!r}")
 
 
-def check(files: dict[str, str], robot: m.Robot, package_dir: Path) -> list[Finding]:
+def check(
+    files: dict[str, str], robot: m.Robot, package_dir: Path, description: Mapping[str, str] | None = None
+) -> list[Finding]:
+    """``description``: the description package's files, for expanding the MoveIt package's
+    Xacro (which includes the description's); without them that proof is skipped."""
     p = _Proof(files, package_dir)
     settings = robot.moveit
     if settings is None:
@@ -66,6 +74,8 @@ def check(files: dict[str, str], robot: m.Robot, package_dir: Path) -> list[Find
     _pilz(p, settings)
     _controllers(p, robot)
     _initial_positions(p, robot)
+    if description is not None:
+        _mock_start(p, robot, description)
     for rel in (".setup_assistant", "config/moveit.rviz"):
         p.yaml(rel)
     for rel, text in files.items():
@@ -208,6 +218,49 @@ def _initial_positions(p: _Proof, robot: m.Robot) -> None:
     for name, value in want:
         if name in got:
             p.number(rel, f"initial_positions.{name}", got[name], value)
+
+
+def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> None:
+    """GEN093: config/<robot>.urdf.xacro expanded as the builder expands it (default arguments;
+    both packages found by ``$(find)``) gives every planning joint's position state the initial
+    state's value. Sandboxed like every Xacro made from a spec (checks/xacro_expand.py)."""
+    from ..readers.xacro_file import expand
+    from ..render.context import package_name
+
+    rel = f"config/{robot.name}.urdf.xacro"
+    if rel not in p.files:
+        return
+    with tempfile.TemporaryDirectory(prefix="descgen-moveit-xacro-") as scratch:
+        root = Path(scratch)
+        for pkg, files in ((package_name(robot), description), (moveit_package_name(robot), p.files)):
+            for name, text in files.items():
+                if name.endswith((".xacro", ".yaml")) or name == "package.xml":
+                    (root / pkg / name).parent.mkdir(parents=True, exist_ok=True)
+                    (root / pkg / name).write_text(text, encoding="utf-8")
+        try:
+            xml = expand(root / moveit_package_name(robot) / rel, rel, {}, package_paths=[root])
+        except InputError as exc:
+            p.fail("GEN093", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
+            return
+    doc = etree.fromstring(xml, etree.XMLParser(resolve_entities=False, no_network=True))
+    for name, value in derive.initial_positions(robot):
+        params = [
+            e
+            for j in doc.iterfind("ros2_control/joint")
+            if j.get("name") == name
+            for e in j.iterfind("state_interface[@name='position']/param[@name='initial_value']")
+        ]
+        if not params:
+            continue  # a planning joint no ros2_control block drives: no hardware to start
+        for e in params:
+            try:
+                got = float(e.text or "")
+            except ValueError:
+                got = math.nan
+            if got != value:
+                p.fail(
+                    "GEN093", rel, f"the mock hardware starts {name} at {e.text!r}, the initial state says {value!r}"
+                )
 
 
 def _package_xml(p: _Proof, robot: m.Robot) -> None:

@@ -96,6 +96,11 @@ def outputs(robot: m.Robot) -> list[tuple[str, str]]:
         ("config/initial_positions.yaml", "moveit_initial_positions.yaml.j2"),
         ("config/moveit.rviz", "moveit_rviz.j2"),
     ]
+    if robot.ros2_control is not None:
+        # the builder loads config/<robot>.urdf.xacro in preference to .setup_assistant's URDF; it
+        # hands initial_positions.yaml to the description's Xacro, so the demo's mock hardware
+        # starts at the initial state (without ros2_control there is no hardware to start)
+        files.append((f"config/{robot.name}.urdf.xacro", "moveit_urdf.xacro.j2"))
     return files + [(f"launch/{n}.launch.py", "moveit_launch.py.j2") for n in launch_names(robot)]
 
 

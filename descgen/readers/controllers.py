@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from .. import model as m
 from ..findings import Finding, InputError, Where
 from ..yamlsource import Document, loads
+from .launch_subst import Site, substitute
 
 
 def _freeze(v: Any) -> object:
@@ -83,10 +86,42 @@ class _Shape:
         return tuple(out)
 
 
-def read_controllers_text(text: str, file: str) -> tuple[tuple[m.Controller, ...], float | None, list[Finding]]:
+def load_substituted(
+    text: str, file: str, launch_args: Mapping[str, str] | None = None
+) -> tuple[Document, tuple[Site, ...], list[Finding]]:
+    """The controllers file as launch's ``ParameterFile(allow_substs=True)`` would hand it to the
+    YAML parser (``$(var NAME)`` from ``launch_args`` only; readers/launch_subst.py), with every
+    mark pointing at the file as written, its substitution sites, and findings for those left
+    as written (CTRL052/CTRL053)."""
+    subst = substitute(text, file, launch_args or {})
+    if not subst.sites and not subst.findings:
+        return loads(text, file), (), []
+    try:
+        doc = loads(subst.text, file)
+    except InputError as exc:  # a YAML error in the substituted text: say where in the file
+        raise InputError([_moved(f, subst.position) for f in exc.findings]) from None
+
+    def back(marks: dict[tuple[str | int, ...], tuple[int, int]]) -> dict[tuple[str | int, ...], tuple[int, int]]:
+        return {k: subst.position(*v) for k, v in marks.items()}
+
+    moved = Document(file, doc.data, back(doc.key_marks), back(doc.value_marks), subst.text)
+    return moved, subst.sites, list(subst.findings)
+
+
+def _moved(f: Finding, position: Callable[[int, int], tuple[int, int]]) -> Finding:
+    if not f.where.line:
+        return f
+    line, col = position(f.where.line, f.where.col or 1)
+    return dataclasses.replace(f, where=dataclasses.replace(f.where, line=line, col=col))
+
+
+def read_controllers_text(
+    text: str, file: str, launch_args: Mapping[str, str] | None = None
+) -> tuple[tuple[m.Controller, ...], float | None, list[Finding]]:
     """Controllers (type from the classic ``controller_manager.ros__parameters.<name>.type``
-    or from ``<name>.ros__parameters.type``), their parameters, and the update rate."""
-    doc = loads(text, file)
+    or from ``<name>.ros__parameters.type``), their parameters, and the update rate.
+    ``launch_args``: the values of the file's ``$(var NAME)`` launch substitutions."""
+    doc, _, early = load_substituted(text, file, launch_args)
     data = doc.data
     if not isinstance(data, dict):
         raise InputError(
@@ -97,6 +132,7 @@ def read_controllers_text(text: str, file: str) -> tuple[tuple[m.Controller, ...
             ]
         )
     shape = _Shape(doc)
+    shape.found += early
     cm_path = ("controller_manager", "ros__parameters")
     cm = shape.mapping(shape.mapping(data.get("controller_manager"), cm_path[:1]).get("ros__parameters"), cm_path)
     types: dict[str, str] = {}

@@ -106,6 +106,9 @@ class _Reader:
         self.file = file
         self.located = located or {}  # where each element of an expanded Xacro was written
         self.findings: list[Finding] = []
+        # attribute text -> its numbers, when valid: descriptions repeat "0 0 0", "1 1 1", "0 0 1"
+        # (a generated one most of its values), and a lookup is several times cheaper than float()
+        self.parsed: dict[str, tuple[float, ...]] = {}
 
     def where(self, e: etree._Element) -> Where:
         return self.located.get(e) or Where(self.file, line_of(e))
@@ -121,17 +124,23 @@ class _Reader:
         raw = e.get(attr)
         if raw is None:
             return default
+        known = self.parsed.get(raw)
+        if known is not None and len(known) == n:
+            return known
         try:
-            values = tuple(float(t) for t in raw.split())
+            values = tuple(map(float, raw.split()))
         except ValueError:
             self.problem(e, f"{e.tag} {attr}='{raw}' is not {n} number(s)", "write plain decimal numbers", subject)
             return default
         if len(values) != n:
             self.problem(e, f"{e.tag} {attr}='{raw}' has {len(values)} numbers, not {n}", f"write {n} numbers", subject)
             return default
-        if not all(math.isfinite(v) for v in values):
+        # a finite sum means every value is finite (nan and inf propagate); only an overflowing
+        # sum of finite values (1e308 + 1e308) needs the value-by-value test
+        if not math.isfinite(sum(values)) and not all(map(math.isfinite, values)):
             self.not_finite(e, f"{e.tag} {attr}='{raw}'", subject)
             return default
+        self.parsed[raw] = values
         return values
 
     def not_finite(self, e: etree._Element, what: str, subject: str) -> None:
@@ -184,45 +193,62 @@ class _Reader:
     def link(self, e: etree._Element) -> m.Link:
         name = e.get("name", "")
         subject = f"link:{name}"
-        visuals = tuple(
-            m.Visual(
-                self.geometry(v.find("geometry"), subject),
-                self.pose(v.find("origin"), subject),
-                v.get("name"),
-                _material_name(v),
-                self.where(v),
+        vs: list[etree._Element] = []
+        cs: list[etree._Element] = []
+        ie = None
+        for c in e:  # one pass over the children: find() costs ~3 us a call, and a link has several
+            tag = c.tag
+            if tag == "visual":
+                vs.append(c)
+            elif tag == "collision":
+                cs.append(c)
+            elif tag == "inertial" and ie is None:
+                ie = c
+        visuals = []
+        for v in vs:  # all visuals, then all collisions: the order their problems are reported in
+            kids = _first_children(v)
+            mat = kids.get("material")
+            visuals.append(
+                m.Visual(
+                    self.geometry(kids.get("geometry"), subject),
+                    self.pose(kids.get("origin"), subject),
+                    v.get("name"),
+                    None if mat is None else mat.get("name"),
+                    self.where(v),
+                )
             )
-            for v in e.findall("visual")
-        )
-        collisions = tuple(
-            m.Collision(
-                self.geometry(c.find("geometry"), subject),
-                self.pose(c.find("origin"), subject),
-                c.get("name"),
-                self.where(c),
+        collisions = []
+        for c in cs:
+            kids = _first_children(c)
+            collisions.append(
+                m.Collision(
+                    self.geometry(kids.get("geometry"), subject),
+                    self.pose(kids.get("origin"), subject),
+                    c.get("name"),
+                    self.where(c),
+                )
             )
-            for c in e.findall("collision")
-        )
         inertial = None
-        ie = e.find("inertial")
         if ie is not None:
-            mass = self.number(ie.find("mass"), "value", subject)
-            te = ie.find("inertia")
+            parts = _first_children(ie)
+            mass = self.number(parts.get("mass"), "value", subject)
+            te = parts.get("inertia")
             tensor = None
             if te is not None:
                 vals = [self.number(te, k, subject) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
                 if all(v is not None for v in vals):
                     tensor = m.Inertia(*(float(v) for v in vals if v is not None))
-            inertial = m.Inertial(mass, self.pose(ie.find("origin"), subject), tensor, self.where(ie))
-        return m.Link(name, visuals, collisions, inertial, self.where(e))
+            inertial = m.Inertial(mass, self.pose(parts.get("origin"), subject), tensor, self.where(ie))
+        return m.Link(name, tuple(visuals), tuple(collisions), inertial, self.where(e))
 
     def joint(self, e: etree._Element) -> m.Joint:
         name = e.get("name", "")
         subject = f"joint:{name}"
         jtype = e.get("type", "")
-        parent = e.find("parent")
-        child = e.find("child")
-        axis_e = e.find("axis")
+        kids = _first_children(e)
+        parent = kids.get("parent")
+        child = kids.get("child")
+        axis_e = kids.get("axis")
         axis: m.Vec3 | None
         if jtype in m.NO_AXIS:
             axis = None
@@ -232,7 +258,7 @@ class _Reader:
             a = self.floats(axis_e, "xyz", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
             axis = (a[0], a[1], a[2])
         limit = None
-        le = e.find("limit")
+        le = kids.get("limit")
         if le is not None:
             limit = m.Limit(
                 self.number(le, "lower", subject),
@@ -242,19 +268,19 @@ class _Reader:
                 self.where(le),
             )
         dynamics = None
-        de = e.find("dynamics")
+        de = kids.get("dynamics")
         if de is not None:
             dynamics = m.Dynamics(
                 self.number(de, "damping", subject) or 0.0, self.number(de, "friction", subject) or 0.0
             )
         mimic = None
-        me = e.find("mimic")
+        me = kids.get("mimic")
         if me is not None:
             mult = self.number(me, "multiplier", subject)
             off = self.number(me, "offset", subject)
             mimic = m.Mimic(me.get("joint", ""), 1.0 if mult is None else mult, off or 0.0, self.where(me))
         safety = None
-        se = e.find("safety_controller")
+        se = kids.get("safety_controller")
         if se is not None:
             safety = m.SafetyController(
                 self.number(se, "k_velocity", subject) or 0.0,
@@ -271,7 +297,7 @@ class _Reader:
             jtype,
             parent.get("link") if parent is not None else None,
             child.get("link") if child is not None else None,
-            self.pose(e.find("origin"), subject),
+            self.pose(kids.get("origin"), subject),
             axis,
             limit,
             dynamics,
@@ -371,9 +397,14 @@ class _Reader:
         )
 
 
-def _material_name(visual: etree._Element) -> str | None:
-    mat = visual.find("material")
-    return None if mat is None else mat.get("name")
+def _first_children(e: etree._Element) -> dict[str, etree._Element]:
+    """Tag -> the first child element with it: what ``e.find(tag)`` gives, for every tag at once."""
+    first: dict[str, etree._Element] = {}
+    for c in e:
+        tag = c.tag
+        if isinstance(tag, str) and tag not in first:  # comments and processing instructions have no str tag
+            first[tag] = c
+    return first
 
 
 def read_urdf_text(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+from collections.abc import Collection
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -106,19 +107,27 @@ def install_dirs(robot: Robot) -> list[str]:
 
 
 def render_package(
-    robot: Robot, spec_display: str, templates: Path | None = None, sandboxed: bool = False
+    robot: Robot,
+    spec_display: str,
+    templates: Path | None = None,
+    sandboxed: bool = False,
+    only: Collection[str] | None = None,
 ) -> dict[str, str]:
-    """Every file of ``<robot>_description/``, path -> text, each with its header."""
+    """Every file of ``<robot>_description/``, path -> text, each with its header; or only the
+    paths in ``only`` (generate needs the URDF alone before the collision matrix exists, and
+    building the other contexts, the sweep's above all, would be thrown away)."""
     env = environment(templates, sandboxed)
-    contexts = {False: context.build(robot, xacro=False), True: context.build(robot, xacro=True)}
+    wanted = [(path, template, xacro) for path, template, xacro in outputs(robot) if only is None or path in only]
+    contexts = {x: context.build(robot, xacro=x) for x in sorted({xacro for _, _, xacro in wanted})}
     for ctx in contexts.values():
         ctx["package"]["install_dirs"] = install_dirs(robot)
-    if robot.semantic is not None and robot.semantic.matrix is not None:
+    sweep_doc = "evidence/sweep.md"
+    if robot.semantic is not None and robot.semantic.matrix is not None and (only is None or sweep_doc in only):
         from ..sweep import evidence as sweep_evidence  # pinocchio only when no sweep is memoised
 
         contexts[False]["sweep"] = sweep_evidence.context(robot)
     out: dict[str, str] = {}
-    for path, template, xacro in outputs(robot):
+    for path, template, xacro in wanted:
         body = _render(env, template, contexts[xacro], templates)
         out[path] = header.add(path, body, spec_display, robot.spec_hash or "0" * 64)
     return dict(sorted(out.items()))

@@ -194,7 +194,7 @@ def _one_or_many(value: object) -> object:
 
 
 class Base(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
 
 
 class Origin(Base):

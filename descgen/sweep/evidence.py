@@ -46,7 +46,7 @@ def context(robot: Robot) -> dict[str, Any]:
                 "axis": axis_text(m.axis),
                 "sentence": sentence(m),
                 "followers": list(m.followers),
-                "between": "a quarter turn from the state" if m.continuous else "lower to upper limit",
+                "between": "a quarter turn from the state" if m.quarter_turn else "lower to upper limit",
                 "moved": [
                     {"link": x.link, "direction": direction(x.displacement) or "origin stays", "tip": x.tip}
                     for x in m.moved

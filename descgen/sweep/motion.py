@@ -7,8 +7,10 @@ joint through one turn. Mimic followers are not swept: they move with their lead
 
 The direction a reviewer reads is the displacement of a link's origin in the root frame from
 the lower to the upper limit ("positive elbow_joint moves tool_link -z 250 mm"); for a
-continuous joint, whose limits are the same configuration, it is the displacement over a
-quarter turn from the state value.
+continuous joint, whose limits are the same configuration, and for a revolute joint whose range
+is more than half a turn (UR's -360 to 360 deg: both limits are one pose, and over most of a turn
+the chord points anywhere), it is the displacement over a quarter turn from the state value (kept
+inside the limits).
 """
 
 from __future__ import annotations
@@ -44,6 +46,11 @@ class JointMotion:
     axis: tuple[float, float, float] | None  # revolute/prismatic axis in the root frame at the state
     span: tuple[float, float]  # the two values the displacement is measured between
     pairs: tuple[tuple[str, str], ...]  # link pairs (with geometry, not disabled) whose relative pose changes
+
+    @property
+    def quarter_turn(self) -> bool:
+        """The direction is measured over a quarter turn, not from limit to limit."""
+        return quarter_turn(self.joint, self.values, self.continuous)
 
     @property
     def moving(self) -> tuple[str, ...]:
@@ -107,10 +114,17 @@ def analyse(
     first = poses[0]
     moving = {n for p in poses[1:] for n, m in p.items() if n in first and np.max(np.abs(m - first[n])) > MOVES}
     q0 = state.get(j.name, 0.0)
-    span = (q0, q0 + math.pi / 2) if continuous else (values[0], values[-1])
+    quarter = quarter_turn(j, values, continuous)
+    if continuous:
+        span = (q0, q0 + math.pi / 2)
+    elif quarter:  # a quarter turn from the state, inside the limits
+        start = min(max(q0, values[0]), values[-1] - math.pi / 2)
+        span = (start, start + math.pi / 2)
+    else:
+        span = (values[0], values[-1])
     at = (
         [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in span]
-        if continuous
+        if quarter
         else [poses[0], poses[-1]]
     )
     tips = _group_tips(robot)
@@ -134,6 +148,12 @@ def analyse(
         span,
         _pairs(poses, geometry, disabled),
     )
+
+
+def quarter_turn(j: Joint, values: Sequence[float], continuous: bool) -> bool:
+    """Whether ``j``'s direction is measured over a quarter turn: continuous, or a revolute
+    range of more than half a turn (its limit-to-limit chord says little about the direction)."""
+    return continuous or (j.type in ROTATING and values[-1] - values[0] > math.pi)
 
 
 def _pairs(
@@ -216,7 +236,7 @@ def sentence(m: JointMotion) -> str:
     """``positive elbow_joint moves tool_link -z 250 mm`` (or what moves when no origin does)."""
     name = m.joint.name
     head = m.headline()
-    over = " over a quarter turn" if m.continuous else ""
+    over = " over a quarter turn" if m.quarter_turn else ""
     if head is None:
         return f"positive {name} moves no link"
     words = direction(head.displacement)

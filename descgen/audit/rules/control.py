@@ -10,6 +10,7 @@ from ...control.claims import JOINT_PARAMS, claims_of, command_pairs, state_pair
 from ...control.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
 from ...findings import Finding
 from ...model import WITH_LIMITS, Controller, HardwareBlock, Robot
+from ...readers.launch_subst import unresolved
 from ..registry import at, rule
 
 _SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
@@ -70,7 +71,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
     sensors = {s.name for s in rc.sensors}
     for c in rc.controllers:
         for joint, iface in command_pairs(c):
-            if (joint, iface) not in cmd:
+            if (joint, iface) not in cmd and not unresolved(joint) and not unresolved(iface):  # CTRL052/053
                 yield at(
                     "CTRL002",
                     c,
@@ -80,7 +81,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
                 )
         missing_sensor = set()
         for comp, iface in state_pairs(c):
-            if (comp, iface) in state:
+            if (comp, iface) in state or unresolved(comp) or unresolved(iface):  # CTRL052/053 stand for it
                 continue
             if c.type.startswith(_SENSOR_BROADCASTERS) and comp not in sensors:
                 missing_sensor.add(comp)  # one finding per absent sensor, not ten per interface
@@ -214,6 +215,8 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
     for c in rc.controllers:
         if not c.type.startswith("diff_drive_controller/"):
             continue
+        if any(unresolved(n) for k in ("left_wheel_names", "right_wheel_names") for n in _list(c.param(k))):
+            continue  # the wheels are named by a launch substitution: CTRL052/053 stand for it
         geo = diff_drive_geometry(robot, c)
         for problem in geo.problems:
             yield at(
@@ -388,7 +391,7 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
         keys = JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
         for key in keys:
             for name in _list(c.param(key)):
-                if robot.joint(str(name)) is None:
+                if robot.joint(str(name)) is None and not unresolved(name):  # CTRL052/053 stand for it
                     yield at(
                         "CTRL009",
                         c,

@@ -8,6 +8,7 @@ from collections.abc import Iterator
 from ...findings import Finding
 from ...frames import RSP, edges
 from ...model import ONE_DOF, Robot
+from ...readers.launch_subst import unresolved
 from ..registry import at, rule
 
 
@@ -109,7 +110,7 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
     for c in rc.controllers if rc else ():
         if c.type.startswith("diff_drive_controller/"):
             base = str(c.param("base_frame_id", "base_link"))
-            if base not in links:
+            if base not in links and not unresolved(base):  # CTRL052/053 stand for a $(var ...)
                 yield at(
                     "FRAME004",
                     c,
@@ -119,7 +120,7 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
                 )
         if c.type.startswith("joint_state_broadcaster/"):
             frame = c.param("frame_id")
-            if frame is not None and str(frame) not in known:
+            if frame is not None and str(frame) not in known and not unresolved(frame):
                 yield at(
                     "FRAME004",
                     c,

@@ -23,6 +23,7 @@ FLOOR = 1.0  # metres: a mesh smaller than this is never called too large
 WATER = 1000.0  # kg/m^3: the side of a cube of water of the link's mass is one more length
 # Unit slips between CAD and URDF (file unit in metres -> how many times too large);
 # a ratio within 15 % of one of these is named.
+_SIGNS = np.array([[sx, sy, sz] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0) for sz in (-1.0, 1.0)])  # box corners
 _FACTORS = ((1000.0, "millimetres"), (100.0, "centimetres"), (1 / 0.0254, "inches"), (0.001, "metres scaled as mm"))
 
 
@@ -154,10 +155,7 @@ def _box_in_link(shape: Visual | Collision, facts: MeshFacts | None) -> tuple[np
     if isinstance(g, Mesh):
         corners = corners_in_metres(facts, g.scale) if facts is not None else None
     elif g is not None and dims(g):
-        half = _half_extents(shape)
-        corners = np.array(
-            [[sx * half[0], sy * half[1], sz * half[2]] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
-        )
+        corners = _SIGNS * np.array(_half_extents(shape))  # (-1) * h is exactly -h: the same corners
     else:
         corners = None
     if corners is None:
