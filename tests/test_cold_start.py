@@ -243,7 +243,13 @@ def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatc
     bin_dir.mkdir()
     started = tmp_path / "started"
     stub = bin_dir / "check_urdf"
-    stub.write_text(f'#!/bin/sh\ndate +%s.%N > "{started}"\nsleep 1\necho "Error: planted"\nexit 3\n', encoding="utf-8")
+    # the stamp appears whole (written aside, then renamed): `>` alone creates the file before
+    # `date` has written, and a reader could see it exist before the stamp's own time
+    stub.write_text(
+        f'#!/bin/sh\ndate +%s.%N > "{started}.tmp"\nmv "{started}.tmp" "{started}"\nsleep 1\n'
+        'echo "Error: planted"\nexit 3\n',
+        encoding="utf-8",
+    )
     stub.chmod(0o755)
     monkeypatch.setenv("PATH", f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}")
     seen: list[float] = []

@@ -115,7 +115,7 @@ def test_eval_and_command_are_not_run(tmp_path: Path) -> None:
     marker = tmp_path / "ran"
     ctl = tmp_path / "c.yaml"
     ctl.write_text(
-        f"a:\n  ros__parameters:\n    type: x/Y\n    p: $(eval "__import__('os').system('touch {marker}')")\n"
+        f"a:\n  ros__parameters:\n    type: x/Y\n    p: $(eval \"__import__('os').system('touch {marker}')\")\n"
         f"    q: $(command touch {marker})\n    r: $(find-pkg-share rclpy)/x\n"
     )
     doc, sites, found = load_substituted(ctl.read_text(), str(ctl), {})
