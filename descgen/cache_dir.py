@@ -22,3 +22,17 @@ def cache_root() -> Path | None:
     import platformdirs  # only when a cache is used: its import is not free on a cold start
 
     return platformdirs.user_cache_path("descgen", appauthor=False)
+
+
+def cache_folder(name: str) -> Path | None:
+    """``<cache>/<name>``, made if missing; None when caching is off or it cannot be made (a
+    cache that cannot be written only costs time)."""
+    root = cache_root()
+    if root is None:
+        return None
+    folder = root / name
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder

@@ -108,20 +108,11 @@ def put(key: str, kind: str, facts: MeshFacts) -> None:
     root = folder()
     if root is None or not _KEY.fullmatch(key) or _facts(_doc(key, kind, facts), key, kind) != facts:
         return  # never write what get() would refuse (a problem message too long, say)
-    path = _entry(root, key)
-    text = json.dumps(_doc(key, kind, facts), allow_nan=False, separators=(",", ":"))
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".json")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as out:
-                out.write(text)
-            os.replace(tmp, path)  # atomic: a concurrent reader sees the old entry or the new one
-        except BaseException:
-            os.unlink(tmp)
-            raise
-    except (OSError, ValueError):
+        text = json.dumps(_doc(key, kind, facts), allow_nan=False, separators=(",", ":"))
+    except ValueError:
         return
+    _write_atomic(_entry(root, key), text)
 
 
 def _doc(key: str, kind: str, f: MeshFacts) -> dict[str, Any]:
@@ -331,13 +322,15 @@ def _read_at_most(path: Path, limit: int) -> bytes | None:
 
 
 def _write_atomic(path: Path, text: str) -> None:
+    """``text`` to ``path`` through a temporary file and a rename: a concurrent reader sees the
+    old file or the new one. Any failure is a cache miss later, never an error now."""
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
         try:
             with os.fdopen(fd, "w", encoding="utf-8") as out:
                 out.write(text)
-            os.replace(tmp, path)  # atomic: a concurrent reader sees the old index or the new one
+            os.replace(tmp, path)
         except BaseException:
             os.unlink(tmp)
             raise

@@ -25,7 +25,7 @@ from decimal import Decimal
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .cache_dir import cache_root
+from .cache_dir import cache_folder
 
 if TYPE_CHECKING:
     import pint
@@ -73,16 +73,7 @@ def registry() -> pint.UnitRegistry[Any]:
 def _cache_folder() -> Path | None:
     """Where pint may cache its parsed definitions, per pint version; None when caching is off
     or the folder cannot be made."""
-    version = _import_pint().__version__
-    base = cache_root()
-    if base is None:
-        return None
-    folder = base / f"pint-{version}"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
-        return None
-    return folder
+    return cache_folder(f"pint-{_import_pint().__version__}")
 
 
 def __getattr__(name: str) -> Any:

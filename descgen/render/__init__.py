@@ -12,7 +12,7 @@ import jinja2
 from jinja2.exceptions import SecurityError
 from jinja2.sandbox import ImmutableSandboxedEnvironment
 
-from ..cache_dir import cache_root
+from ..cache_dir import cache_folder
 from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
@@ -32,13 +32,8 @@ def _bytecode_cache() -> jinja2.BytecodeCache | None:
     own __pycache__: compiling the 40-odd templates is half of a warm ``check``. jinja2 keys an
     entry by the template's name and file and recompiles when the source's checksum differs;
     None (compile every time) when caching is off or the folder cannot be made."""
-    root = cache_root()
-    if root is None:
-        return None
-    folder = root / f"jinja2-{jinja2.__version__}"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
+    folder = cache_folder(f"jinja2-{jinja2.__version__}")
+    if folder is None:
         return None
     return jinja2.FileSystemBytecodeCache(str(folder))
 

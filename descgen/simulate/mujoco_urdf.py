@@ -16,9 +16,10 @@ from pathlib import Path
 from lxml import etree
 
 from ..findings import Finding
-from ..model import Box, Collision, Cylinder, Geometry, Joint, Link, Mesh, Pose, Robot, Sphere, Visual
+from ..model import Collision, Joint, Link, Mesh, Robot, Visual
 from ..readers.xacro_file import find_package, package_root
 from ..safeio import read_bounded
+from ..urdf_xml import geometry, origin, xyz
 from .codes import finding
 
 # mesh formats MuJoCo's compiler reads (user_mesh.cc); Collada and others are refused
@@ -54,26 +55,6 @@ def resolve_mesh(name: str, description: Path | None, package_paths: Sequence[Pa
         return target if target.is_relative_to(root) and target.is_file() else None
     except (OSError, ValueError):
         return None
-
-
-def _xyz(v: Sequence[float]) -> str:
-    return " ".join(repr(float(x)) for x in v)
-
-
-def _origin(parent: etree._Element, pose: Pose) -> None:
-    etree.SubElement(parent, "origin", xyz=_xyz(pose.xyz), rpy=_xyz(pose.rpy))
-
-
-def _geometry(parent: etree._Element, g: Geometry, filename: str | None = None) -> None:
-    geo = etree.SubElement(parent, "geometry")
-    if isinstance(g, Box):
-        etree.SubElement(geo, "box", size=_xyz(g.size))
-    elif isinstance(g, Cylinder):
-        etree.SubElement(geo, "cylinder", radius=repr(g.radius), length=repr(g.length))
-    elif isinstance(g, Sphere):
-        etree.SubElement(geo, "sphere", radius=repr(g.radius))
-    else:
-        etree.SubElement(geo, "mesh", filename=filename or g.filename, scale=_xyz(g.scale))
 
 
 class _Writer:
@@ -113,7 +94,7 @@ class _Writer:
         i = lk.inertial
         if i is not None and i.mass is not None:
             ine = etree.SubElement(el, "inertial")
-            _origin(ine, i.origin)
+            origin(ine, i.origin)
             etree.SubElement(ine, "mass", value=repr(i.mass))
             t = i.inertia
             values = (t.ixx, t.ixy, t.ixz, t.iyy, t.iyz, t.izz) if t is not None else (0.0,) * 6
@@ -128,8 +109,8 @@ class _Writer:
         if v.geometry is None:
             return
         vis = etree.SubElement(el, "visual")
-        _origin(vis, v.origin)
-        _geometry(vis, v.geometry)
+        origin(vis, v.origin)
+        geometry(vis, v.geometry)
 
     def collision(self, el: etree._Element, lk: Link, c: Collision) -> None:
         if c.geometry is None:
@@ -141,16 +122,16 @@ class _Writer:
                 self.out.dropped += 1
                 return
         col = etree.SubElement(el, "collision")
-        _origin(col, c.origin)
-        _geometry(col, c.geometry, filename)
+        origin(col, c.origin)
+        geometry(col, c.geometry, filename)
 
     def joint(self, root: etree._Element, j: Joint) -> None:
         el = etree.SubElement(root, "joint", name=j.name, type=j.type)
-        _origin(el, j.origin)
+        origin(el, j.origin)
         etree.SubElement(el, "parent", link=j.parent or "")
         etree.SubElement(el, "child", link=j.child or "")
         if j.axis is not None:
-            etree.SubElement(el, "axis", xyz=_xyz(j.axis))
+            etree.SubElement(el, "axis", xyz=xyz(j.axis))
         lm = j.limit
         if lm is not None:
             attrs = {k: repr(v) for k, v in (("lower", lm.lower), ("upper", lm.upper)) if v is not None}

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 from lxml import etree
 
 from .. import collision
-from ..model import ONE_DOF, Box, Cylinder, Mesh, Robot, Sphere
+from ..model import ONE_DOF, Mesh, Robot
+from ..urdf_xml import geometry, origin, xyz
 from .motion import JointMotion, joint_values
 
 
@@ -50,10 +51,6 @@ def unresolved_meshes(robot: Robot) -> list[str]:
     ]
 
 
-def _xyz(v: Sequence[float]) -> str:
-    return " ".join(repr(float(x)) for x in v)
-
-
 def pinocchio_urdf(robot: Robot) -> str:
     """The model as a URDF for pinocchio: collision shapes, joints, limits; meshes by file."""
     files = dict(robot.mesh_files)
@@ -65,25 +62,17 @@ def pinocchio_urdf(robot: Robot) -> str:
             if g is None or (isinstance(g, Mesh) and g.filename not in files):
                 continue
             el = etree.SubElement(link, "collision")
-            etree.SubElement(el, "origin", xyz=_xyz(c.origin.xyz), rpy=_xyz(c.origin.rpy))
-            geo = etree.SubElement(el, "geometry")
-            if isinstance(g, Box):
-                etree.SubElement(geo, "box", size=_xyz(g.size))
-            elif isinstance(g, Cylinder):
-                etree.SubElement(geo, "cylinder", radius=repr(g.radius), length=repr(g.length))
-            elif isinstance(g, Sphere):
-                etree.SubElement(geo, "sphere", radius=repr(g.radius))
-            else:
-                etree.SubElement(geo, "mesh", filename=files[g.filename], scale=_xyz(g.scale))
+            origin(el, c.origin)
+            geometry(el, g, files[g.filename] if isinstance(g, Mesh) else None)
     for j in robot.joints:
         if j.parent is None or j.child is None:
             continue
         el = etree.SubElement(root, "joint", name=j.name, type=j.type)
         etree.SubElement(el, "parent", link=j.parent)
         etree.SubElement(el, "child", link=j.child)
-        etree.SubElement(el, "origin", xyz=_xyz(j.origin.xyz), rpy=_xyz(j.origin.rpy))
+        origin(el, j.origin)
         if j.axis is not None and j.type != "fixed":
-            etree.SubElement(el, "axis", xyz=_xyz(j.axis))
+            etree.SubElement(el, "axis", xyz=xyz(j.axis))
         if j.type in ONE_DOF:
             lm = j.limit
             lower = lm.lower if lm and lm.lower is not None else 0.0
