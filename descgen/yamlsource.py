@@ -22,6 +22,9 @@ from .safeio import Codes, read_bounded
 MAX_BYTES = 5 * 1024 * 1024  # a robot spec is kilobytes; 5 MB is already absurd
 MAX_NODES = 200_000  # after alias expansion
 MAX_DEPTH = 64
+DEPTH_HINT = (
+    f"descgen reads YAML nested at most {MAX_DEPTH} levels deep; no spec, controllers or MoveIt file needs more"
+)
 
 Path_ = tuple[str | int, ...]
 
@@ -128,7 +131,11 @@ def loads(text: str, file: str = "<string>") -> Document:
     except yaml.YAMLError as exc:
         raise _fail(file, f"malformed YAML: {' '.join(str(exc).split())}", "fix the YAML syntax") from None
     except RecursionError:
-        raise _fail(file, "YAML nested too deeply", f"a spec nests at most {MAX_DEPTH} levels") from None
+        raise _fail(
+            file,
+            "YAML nested too deeply",
+            DEPTH_HINT,
+        ) from None
     if node is None:
         raise _fail(
             file, "the file is empty", "write a robot spec (see specs/warehouse_arm.yaml)", 1, 1, code="YAML004"
@@ -173,7 +180,7 @@ class _Builder:
             raise _fail(
                 self.file,
                 "YAML nested too deeply",
-                f"a spec nests at most {MAX_DEPTH} levels",
+                DEPTH_HINT,
                 node.start_mark.line + 1,
                 node.start_mark.column + 1,
             )
