@@ -14,6 +14,7 @@ exactly them, nothing else (:func:`block_differences`).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Callable, Mapping
@@ -195,6 +196,19 @@ def _joint_iface(w: SpecWriter, robot: m.Robot, joint: str, e: etree._Element) -
     return out
 
 
+def _interfaces(
+    e: etree._Element,
+    read: Callable[[etree._Element], str | Data],
+    kinds: tuple[str, ...] = ("command", "state"),
+) -> Data:
+    """``command:``/``state:`` lists of an element's interfaces, each kind only when it has one."""
+    out: Data = {}
+    for kind in kinds:
+        if found := [read(c) for c in e.findall(f"{kind}_interface")]:
+            out[kind] = found
+    return out
+
+
 def _iface(e: etree._Element) -> str | Data:
     params = _params(e)
     if not params and e.get("data_type") is None:
@@ -219,31 +233,21 @@ def block_data(block: etree._Element, robot: m.Robot, w: SpecWriter, source: Cal
     joints = []
     for je in block.findall("joint"):
         name = je.get("name", "")
-        j: Data = {"name": name}
-        if cmds := [_joint_iface(w, robot, name, c) for c in je.findall("command_interface")]:
-            j["command"] = cmds
-        if states := [_joint_iface(w, robot, name, c) for c in je.findall("state_interface")]:
-            j["state"] = states
+        j: Data = {"name": name, **_interfaces(je, functools.partial(_joint_iface, w, robot, name))}
         if je.get("mimic") is not None:
             j["mimic"] = je.get("mimic", "").lower() == "true"
         j["source"] = source(je)
         joints.append(j)
     sensors = []
     for se in block.findall("sensor"):
-        s: Data = {"name": se.get("name", "")}
-        if states := [_iface(c) for c in se.findall("state_interface")]:
-            s["state"] = states
+        s: Data = {"name": se.get("name", ""), **_interfaces(se, _iface, kinds=("state",))}
         if params := _params(se):
             s["params"] = params
         s["source"] = source(se)
         sensors.append(s)
     gpios = []
     for ge in block.findall("gpio"):
-        g: Data = {"name": ge.get("name", "")}
-        if cmds := [_iface(c) for c in ge.findall("command_interface")]:
-            g["command"] = cmds
-        if states := [_iface(c) for c in ge.findall("state_interface")]:
-            g["state"] = states
+        g: Data = {"name": ge.get("name", ""), **_interfaces(ge, _iface)}
         g["source"] = source(ge)
         gpios.append(g)
     for key, items in (("joints", joints), ("sensors", sensors), ("gpios", gpios)):
