@@ -14,7 +14,11 @@ URDFs with their SRDFs; its meshes, ~620 distinct files, 350 MB, are resolved an
   resolving and every rule; no hashing).
 - warm: the synthetic 1000-link chain read and audited in process, against check_urdf on its URDF.
 The anchor is always check_urdf as cold processes. The cache folder is a temporary one, so
-the user's own cache is neither used nor changed.
+the user's own cache is neither used nor changed. Each whole-process row is printed twice:
+wall time, and CPU time (user + system of the process and its children, from getrusage, as
+bench_cold_start.py does), which is steadier when other work loads the machine; the anchor
+is measured the same way. The passes inside a process are timed by the process itself
+(perf_counter for wall, process_time for CPU).
 
 Run: .venv/bin/python benchmarks/bench_audit.py
 """
@@ -23,6 +27,7 @@ from __future__ import annotations
 
 import json
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -45,48 +50,59 @@ sys.path.insert(0, sys.argv[1])
 from descgen.audit.inputs import Options, audit
 from tests.corpus import descriptions, share
 corpus, root = descriptions(), share()
-passes = []
+passes, cpus = [], []
 for _ in range(int(sys.argv[2])):
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     n = sum(len(audit(u, Options(srdf=s, package_paths=(root,) if root else ()))) for _, u, s in corpus)
     passes.append(time.perf_counter() - t0)
-print(json.dumps({"files": len(corpus), "srdfs": sum(1 for c in corpus if c[2]), "passes": passes, "findings": n}))
+    cpus.append(time.process_time() - c0)
+report = {"files": len(corpus), "srdfs": sum(1 for c in corpus if c[2]), "passes": passes, "cpus": cpus}
+print(json.dumps(report | {"findings": n}))
 """
 
 
-def _process(passes: int, cache: str) -> tuple[float, dict[str, Any]]:
-    """Wall time of one fresh process running ``passes`` passes over the corpus, and its report."""
+def _children_cpu() -> float:
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return used.ru_utime + used.ru_stime
+
+
+def _process(passes: int, cache: str) -> tuple[float, float, dict[str, Any]]:
+    """Wall and CPU time of one fresh process running ``passes`` passes over the corpus, and its report."""
     env = {**os.environ, "DESCGEN_CACHE_DIR": cache}
-    t0 = time.perf_counter()
+    c0, t0 = _children_cpu(), time.perf_counter()
     done = subprocess.run(
         [sys.executable, "-c", LOOP, str(ROOT), str(passes)], capture_output=True, text=True, check=True, env=env
     )
-    return time.perf_counter() - t0, json.loads(done.stdout)
+    return time.perf_counter() - t0, _children_cpu() - c0, json.loads(done.stdout)
 
 
-def _corpus_rows(t_check: float | None) -> None:
+Anchor = tuple[float, float] | None  # check_urdf over the corpus: (wall, cpu)
+
+
+def _corpus_rows(check: Anchor) -> None:
+    t_check, c_check = check if check else (None, None)
     with tempfile.TemporaryDirectory() as cache:
-        t_cold, cold = _process(3, cache)
-        t_warm, warm = _process(1, cache)
-    assert cold["findings"] == warm["findings"], "a cached mesh fact changed a finding"
+        t_cold, c_cold, cold = _process(3, cache)
+        warm_runs = [_process(1, cache) for _ in range(3)]
+    warm = warm_runs[0][2]
+    t_warm = statistics.median(w[0] for w in warm_runs)
+    c_warm = statistics.median(w[1] for w in warm_runs)
+    assert all(cold["findings"] == w[2]["findings"] for w in warm_runs), "a cached mesh fact changed a finding"
     files = f"{cold['files']} corpus URDFs (+{cold['srdfs']} SRDFs)"
-    row(
-        f"audit of {files}, fresh process, mesh cache empty (every mesh parsed)",
-        t_cold - sum(cold["passes"][1:]),
-        t_check,
-        "cold",
-    )
+    first = f"audit of {files}, fresh process, mesh cache empty (every mesh parsed)"
+    row(first, t_cold - sum(cold["passes"][1:]), t_check, "cold")
+    row(f"{first}, CPU", c_cold - sum(cold["cpus"][1:]), c_check, "cold")
     row(
         "  of which the audit pass (the rest is starting Python and importing descgen)", cold["passes"][0], None, "cold"
     )
-    row(f"audit of {files}, second fresh process, mesh cache warm (meshes stat()ed, not read)", t_warm, t_check, "cold")
+    second = f"audit of {files}, second fresh process, mesh cache warm (meshes stat()ed, not read; median of 3)"
+    row(second, t_warm, t_check, "cold")
+    row(f"{second}, CPU", c_warm, c_check, "cold")
     row("  of which the audit pass", warm["passes"][0], None, "cold")
-    row(
-        f"audit of {files} again in the first process, mesh facts in memory (anchor: cold check_urdf)",
-        statistics.median(cold["passes"][1:]),
-        t_check,
-        "warm",
-    )
+    row("  of which the audit pass, CPU", warm["cpus"][0], None, "cold")
+    again = f"audit of {files} again in the first process, mesh facts in memory (anchor: cold check_urdf)"
+    row(again, statistics.median(cold["passes"][1:]), t_check, "warm")
+    row(f"{again}, CPU", statistics.median(cold["cpus"][1:]), c_check, "warm")
 
 
 def main() -> None:
@@ -96,19 +112,23 @@ def main() -> None:
     from descgen.spec import load_spec_text
     from tests.corpus import descriptions
 
-    header()
     tool = shutil.which("check_urdf")
     corpus = descriptions()
-    t_check = None
+    check: Anchor = None
     if tool and corpus:
         for _, urdf, _ in corpus[:5]:
             subprocess.run([tool, str(urdf)], capture_output=True)  # OS file cache
-        t0 = time.perf_counter()
-        for _, urdf, _ in corpus:
-            subprocess.run([tool, str(urdf)], capture_output=True)
-        t_check = time.perf_counter() - t0
+        runs = []
+        for _ in range(3):
+            c0, t0 = _children_cpu(), time.perf_counter()
+            for _, urdf, _ in corpus:
+                subprocess.run([tool, str(urdf)], capture_output=True)
+            runs.append((time.perf_counter() - t0, _children_cpu() - c0))
+        check = statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs)
+        print(f"anchor: check_urdf over the same files, one process each, median of 3; load {os.getloadavg()[0]:.2f}")
+    header()
     if corpus:
-        _corpus_rows(t_check)
+        _corpus_rows(check)
     else:
         print("example-robot-data is not installed: no corpus rows")
 

@@ -5,7 +5,18 @@ no value cites a source, so the generated Xacro has no properties). Anchor: a fr
 process on the plain generated URDF of the same robot (what the issue's "2x xacro on the plain
 URDF" goal compares with); `xacro` on the generated Xacro is a row of its own (it shows what the
 Xacro's properties cost). A warm in-process `generate` of the example (imports done) is a
-warm row. Medians of 3 fresh processes (1 at 1000 links, which takes ~10 s per run).
+warm row.
+
+Figures are CPU seconds (user + system of the process and its children: check_urdf, dot), the
+median of REPEAT fresh processes (3 at 1000 links) after one uncounted run; CPU is steadier than
+wall time on a shared machine. descgen's caches live in a folder of this run (DESCGEN_CACHE_DIR):
+pint definitions, compiled templates and mesh facts are warm, as after any first run. The result
+cache (descgen/result_cache.py) is said per row:
+
+- ``generate`` runs with it empty: an edited spec gives new files, so nothing in it applies;
+- ``check after generate`` runs with what generate left in it: the pre-commit flow (edit the
+  spec, generate, commit);
+- ``check, result cache empty``: a CI job that keeps no cache between runs.
 
 Run: .venv/bin/python benchmarks/bench_generate.py [--quick]
 """
@@ -13,6 +24,7 @@ Run: .venv/bin/python benchmarks/bench_generate.py [--quick]
 from __future__ import annotations
 
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -30,31 +42,44 @@ from descgen.generate import generate
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
+CACHE = Path(tempfile.mkdtemp(prefix="descgen-bench-cache-"))
 # Fresh processes, but with Python's bytecode cache as an installed descgen has it: a shell may
 # set PYTHONDONTWRITEBYTECODE (these sessions' does), and then every descgen module is compiled
 # again in every process (~0.1 s of a cold start). The cache goes to a temporary folder, not the
-# tree, and every command runs once uncounted first (see bench's ``warmup``).
+# tree, and every command runs once uncounted first.
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"} | {
-    "PYTHONPYCACHEPREFIX": tempfile.mkdtemp(prefix="descgen-bench-pycache-")
+    "PYTHONPYCACHEPREFIX": tempfile.mkdtemp(prefix="descgen-bench-pycache-"),
+    "DESCGEN_CACHE_DIR": str(CACHE),
 }
 
 
-def median_seconds(fn: Callable[[], object], repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
-
-
-def run(argv: list[str], cwd: Path, ok: tuple[int, ...] = (0,)) -> None:
+def cpu_seconds(argv: list[str], cwd: Path, ok: tuple[int, ...] = (0,)) -> float:
+    """CPU seconds of one fresh process and its children."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     done = subprocess.run(argv, cwd=cwd, capture_output=True, text=True, env=ENV)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode not in ok:
         raise SystemExit(f"{' '.join(argv)} exited {done.returncode}:\n{done.stderr[-2000:]}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def bench(label: str, spec_text: str, name: str, repeat: int, warm: bool = False, warmup: bool = False) -> None:
+def median_cpu(fn: Callable[[], float], repeat: int, setup: Callable[[], None] = lambda: None) -> float:
+    """Median of ``repeat`` runs of ``fn`` (each returns its CPU seconds), ``setup`` before each
+    outside the measurement, after one uncounted run."""
+    setup()
+    fn()
+    runs = []
+    for _ in range(repeat):
+        setup()
+        runs.append(fn())
+    return statistics.median(runs)
+
+
+def no_results() -> None:
+    shutil.rmtree(CACHE / "results", ignore_errors=True)
+
+
+def bench(label: str, spec_text: str, name: str, repeat: int, warm: bool = False) -> None:
     descgen = str(BIN / "descgen")
     xacro = shutil.which("xacro", path=str(BIN)) or "xacro"
     with tempfile.TemporaryDirectory() as tmp_name:
@@ -62,33 +87,56 @@ def bench(label: str, spec_text: str, name: str, repeat: int, warm: bool = False
         (tmp / "specs").mkdir()
         spec = tmp / "specs" / f"{name}.yaml"
         spec.write_text(spec_text)
-        package = tmp / "generated" / f"{name}_description"
+        urdf = tmp / "generated" / f"{name}_description" / "urdf" / f"{name}.urdf"
 
-        def cold_generate() -> None:
+        def fresh_generate() -> None:  # an edited spec: no package, nothing in the result cache
             shutil.rmtree(tmp / "generated", ignore_errors=True)
-            run([descgen, "generate", str(spec)], tmp)
+            no_results()
 
-        urdf = package / "urdf" / f"{name}.urdf"
-        if warmup:  # uncounted: the OS file cache and the bytecode cache of every module used
-            cold_generate()
-            run([descgen, "check", str(spec)], tmp)
-            run([xacro, str(urdf)], tmp)
-        t_gen = median_seconds(cold_generate, repeat)
-        t_check = median_seconds(lambda: run([descgen, "check", str(spec)], tmp), repeat)
-        t_plain = median_seconds(lambda: run([xacro, str(urdf)], tmp), repeat)
-        t_xacro = median_seconds(lambda: run([xacro, str(urdf.with_suffix(".urdf.xacro"))], tmp), repeat)
-        row(f"generate, {label}", t_gen, t_plain, "cold", anchor_name="xacro on its URDF")
-        row(f"check, {label}", t_check, t_plain, "cold", anchor_name="xacro on its URDF")
-        row(f"xacro on the generated Xacro, {label}", t_xacro, t_plain, "cold", anchor_name="xacro on its URDF")
+        t_gen = median_cpu(lambda: cpu_seconds([descgen, "generate", str(spec)], tmp), repeat, fresh_generate)
+        check = [descgen, "check", str(spec)]
+        t_check = median_cpu(lambda: cpu_seconds(check, tmp), repeat)  # the cache as generate left it
+        t_check_empty = median_cpu(lambda: cpu_seconds(check, tmp), repeat, no_results)
+        t_plain = median_cpu(lambda: cpu_seconds([xacro, str(urdf)], tmp), repeat)
+        t_xacro = median_cpu(lambda: cpu_seconds([xacro, str(urdf.with_suffix(".urdf.xacro"))], tmp), repeat)
+        anchor = "xacro on its URDF"
+        row(f"generate, {label}, CPU", t_gen, t_plain, "cold", anchor_name=anchor)
+        row(f"check after generate, {label}, CPU", t_check, t_plain, "cold", anchor_name=anchor)
+        row(f"check, result cache empty, {label}, CPU", t_check_empty, t_plain, "cold", anchor_name=anchor)
+        row(f"xacro on the generated Xacro, {label}, CPU", t_xacro, t_plain, "cold", anchor_name=anchor)
+        sandbox_row(label, urdf.with_suffix(".urdf.xacro"), repeat)
         if warm:
 
-            def warm_generate() -> None:
+            def warm_generate() -> float:
                 shutil.rmtree(tmp / "generated", ignore_errors=True)
+                t0 = time.process_time()
                 assert not generate(spec).failed
+                return time.process_time() - t0
 
-            warm_generate()  # imports and caches, then time
-            t_warm = median_seconds(warm_generate, repeat)
-            row(f"generate in process, {label} (anchor: cold xacro)", t_warm, t_plain, "warm")
+            os.environ["DESCGEN_CACHE_DIR"] = str(CACHE)  # this process: the bench's caches too
+            t_warm = median_cpu(warm_generate, repeat, no_results)
+            row(f"generate in process, {label}, CPU (anchor: cold xacro)", t_warm, t_plain, "warm")
+
+
+def sandbox_row(label: str, path: Path, repeat: int) -> None:
+    """The sandbox's own cost: check 1's expansion (``readers.xacro_file.expand``) beside
+    ``xacro.process_file`` + ``toxml`` on the same file, both in this process after imports (CPU
+    time, median of at least 3)."""
+    import xacro
+
+    from descgen.readers.xacro_file import expand
+
+    def cpu(fn: Callable[[], object]) -> float:
+        times = []
+        for _ in range(max(repeat, 3)):
+            t0 = time.process_time()
+            fn()
+            times.append(time.process_time() - t0)
+        return statistics.median(times)
+
+    ours = cpu(lambda: expand(path, path.name))
+    theirs = cpu(lambda: xacro.process_file(str(path)).toxml())
+    row(f"sandboxed expansion of the generated Xacro, {label}", ours, theirs, "warm", anchor_name="xacro.process_file")
 
 
 def main() -> None:
@@ -96,9 +144,12 @@ def main() -> None:
     repeat = 1 if quick else 3
     header()
     example = (ROOT / "specs" / "warehouse_arm.yaml").read_text()
-    bench("the example", example, "warehouse_arm", repeat, warm=True, warmup=True)
-    bench("chain of 100 links", chain_spec(100, "chain100"), "chain100", repeat)
-    bench("chain of 1000 links", chain_spec(1000, "chain1000"), "chain1000", 1)
+    try:
+        bench("the example", example, "warehouse_arm", 5 if not quick else 1, warm=True)
+        bench("chain of 100 links", chain_spec(100, "chain100"), "chain100", repeat)
+        bench("chain of 1000 links", chain_spec(1000, "chain1000"), "chain1000", repeat)
+    finally:
+        shutil.rmtree(CACHE, ignore_errors=True)
 
 
 if __name__ == "__main__":

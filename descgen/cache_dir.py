@@ -1,4 +1,5 @@
-"""The user cache folder descgen keeps derived data in (pint's parsed definitions, mesh facts).
+"""The user cache folder descgen keeps derived data in (pint's parsed definitions, compiled
+templates, mesh facts, the result cache of descgen/result_cache.py).
 
 ``DESCGEN_CACHE_DIR=DIR`` moves it, ``DESCGEN_CACHE_DIR=`` (empty) switches caching off (the test
 suite does). Everything in it is derived from inputs it is keyed by, so deleting it only costs

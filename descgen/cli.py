@@ -155,6 +155,22 @@ def _cmd_poses(args: argparse.Namespace) -> int:
 def _description_options(args: argparse.Namespace) -> Options:
     from .audit.inputs import Options
 
+    if args.launch_arg and args.controllers is None:
+        # only a controllers YAML named with --controllers is read with launch arguments; a value
+        # that changes nothing would let a user believe a $(var) was checked
+        raise InputError(
+            [
+                Finding(
+                    "CTRL055",
+                    "error",
+                    "--launch-arg is given without --controllers; launch arguments are used only for the "
+                    "$(var NAME) substitutions of the controllers YAML named by --controllers",
+                    "add --controllers FILE, or drop --launch-arg",
+                    "option",
+                    types.COMMAND_LINE,
+                )
+            ]
+        )
     return Options(
         args.srdf,
         args.controllers,

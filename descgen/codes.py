@@ -1864,6 +1864,17 @@ register(
       newline in a value would add YAML lines that are not in the file. Exit 2, nothing read further.""",
     ),
     C(
+        "CTRL055",
+        "launch-arg-without-controllers",
+        "error",
+        "read",
+        "--launch-arg is given to audit or import without --controllers: nothing would read its value.",
+        """Launch arguments are the values of $(var NAME) substitutions in the controllers YAML named by
+      --controllers (a MoveIt config's ros2_controllers.yaml is read as written). Ignoring the option
+      silently would let a user believe a substitution was checked with that value. Exit 2, nothing
+      read or written.""",
+    ),
+    C(
         "IMP031",
         "import-launch-substitution",
         "info",

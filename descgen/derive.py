@@ -7,15 +7,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from .model import WITH_LIMITS, Controller, Cylinder, Interface, Joint, Robot, Sphere
-from .transforms import Mat, pose_matrix
+
+if TYPE_CHECKING:
+    from .transforms import Mat
+
+# numpy (through transforms) only inside fixed_transform: this module is on the path of every
+# validate and check, which otherwise need no numpy
 
 
 def fixed_transform(robot: Robot, frame: str, base: str) -> Mat | None:
     """Pose of ``frame`` in ``base`` with every joint at zero; None if ``base`` is not above it."""
+    import numpy as np
+
+    from .transforms import pose_matrix
+
     t = np.eye(4)
     for j in reversed(robot.path_to_root(frame)):
         t = pose_matrix(j.origin.xyz, j.origin.rpy) @ t
@@ -57,12 +65,15 @@ def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
     elif lj.axis is None:
         problems.append(f"wheel joint '{lj.name}' has no axis")
     else:
-        tl = pose_matrix(lj.origin.xyz, lj.origin.rpy)
-        tr = pose_matrix(rj.origin.xyz, rj.origin.rpy)
-        axis = tl[:3, :3] @ np.asarray(lj.axis, dtype=float)
-        n = float(np.linalg.norm(axis))
+        # plain floats (descgen/rigid.py): validate and check run this for every diff drive,
+        # and numpy costs more to import than the whole computation
+        from . import rigid
+
+        axis = rigid.rotate(rigid.rpy_rot(lj.origin.rpy), lj.axis)
+        n = rigid.norm(axis)
         if n > 0:
-            separation = abs(float(np.dot(tl[:3, 3] - tr[:3, 3], axis / n)))
+            gap = tuple(a - b for a, b in zip(lj.origin.xyz, rj.origin.xyz, strict=True))
+            separation = abs(rigid.dot(gap, tuple(c / n for c in axis)))
     radii = [wheel_radius(robot, j) for j in (lj, rj)]
     radius = radii[0]
     if radius is None:

@@ -8,8 +8,9 @@ from collections.abc import Sequence
 
 
 def mm(v: Sequence[float]) -> str:
-    """A vector in metres shown in millimetres to 0.1 mm: ``0.1, 0, 0.25`` -> ``100.0, 0.0, 250.0``."""
-    return ", ".join(f"{c * 1000:.1f}" for c in v)
+    """A vector in metres shown in millimetres to 0.1 mm: ``0.1, 0, 0.25`` -> ``100.0, 0.0, 250.0``.
+    A value that rounds to zero is ``0.0``, never ``-0.0`` (a reader would hunt for a sign)."""
+    return ", ".join(f"{round(c * 1000, 1) + 0.0:.1f}" for c in v)
 
 
 def thousand_off(magnitude: float, low: float, high: float) -> float | None:

@@ -41,25 +41,50 @@ def source_digest() -> str:
     by path and bytes. Any edit to descgen, not only to the module that computes a result,
     counts: a result depends on the loader, the renderers and the checks too, and telling
     which files matter would be a guess that could go stale."""
-    root = Path(__file__).resolve().parent
+    import os
+
+    root = os.path.dirname(os.path.realpath(__file__))
+    found: list[tuple[list[str], str]] = []
+    # os.walk, not Path.rglob: a third of the time, and __pycache__ folders are not walked at all
+    for folder, dirs, names in os.walk(root):
+        dirs[:] = [d for d in dirs if d != "__pycache__"]
+        rel = os.path.relpath(folder, root).replace(os.sep, "/")
+        for name in names:
+            path = os.path.join(folder, name)
+            if os.path.isfile(path):
+                found.append(((rel + "/" + name).removeprefix("./").split("/"), path))
     h = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
-        h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
-        h.update(hashlib.sha256(path.read_bytes()).digest())
+    for parts, path in sorted(found):  # by path components, as pathlib sorts
+        with open(path, "rb") as fh:
+            h.update("/".join(parts).encode("utf-8") + b"\0")
+            h.update(hashlib.sha256(fh.read()).digest())
     return h.hexdigest()
 
 
 def versions(*distributions: str) -> dict[str, str]:
     """The installed version of each distribution ("absent" when it is not installed)."""
+    return {name: version(name) for name in distributions}
+
+
+@functools.cache
+def version(name: str) -> str:
+    """``importlib.metadata.version(name)``, read from the metadata's header alone.
+
+    ``metadata.version`` parses the whole METADATA file as an e-mail message, the project's long
+    description included: 6-12 ms for pydantic or matplotlib, and every ``check`` asks for a
+    dozen versions. The header ends at the first blank line (core metadata, RFC 822 layout);
+    when it holds no Version field, ``metadata.version`` decides."""
     from importlib import metadata
 
-    out = {}
-    for name in distributions:
-        try:
-            out[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            out[name] = "absent"
-    return out
+    try:
+        dist = metadata.distribution(name)
+    except metadata.PackageNotFoundError:
+        return "absent"
+    text = dist.read_text("METADATA") or dist.read_text("PKG-INFO") or ""
+    for line in text.replace("\r\n", "\n").split("\n\n", 1)[0].split("\n"):
+        if line[:8].lower() == "version:":
+            return line[8:].strip()
+    return str(dist.version)
 
 
 def descgen_identity() -> dict[str, object]:
@@ -81,6 +106,49 @@ def package_files(package: Path, skip: tuple[str, ...] = ()) -> dict[str, str]:
             continue
         out[rel] = "link" if path.is_symlink() or not path.is_file() else sha256(path.read_bytes())
     return out
+
+
+def model_values(value: object) -> object:
+    """A model value (descgen.model's frozen dataclasses, tuples, numbers, strings) as plain
+    JSON-able data for :func:`digest`: every field by name, with each class's name, leaving out
+    only ``Where`` (where a value was written changes no result, and paths differ by machine).
+    A TypeError for anything else, so a value this cannot see whole is never keyed by part of it."""
+    from .findings import Where
+
+    kind = type(value)
+    if value is None or kind in (bool, int, str):
+        return value
+    if kind is float:
+        return repr(value)  # exact, and NaN or -0.0 stay themselves
+    if kind is tuple or kind is list:
+        return [model_values(v) for v in value]  # type: ignore[attr-defined]
+    if kind is Where:
+        return None
+    names = _FIELDS.get(kind, ()) or _fields(kind)
+    if names is not None:
+        got = [(n, getattr(value, n)) for n in names]
+        return [kind.__name__, {n: model_values(v) for n, v in got if type(v) is not Where}]
+    if isinstance(value, dict):
+        return ["dict", [[model_values(k), model_values(v)] for k, v in value.items()]]
+    if isinstance(value, (set, frozenset)):
+        return ["set", sorted(json.dumps(model_values(v), sort_keys=True) for v in value)]
+    from pathlib import PurePath
+
+    if isinstance(value, PurePath):
+        return ["path", str(value)]
+    raise TypeError(f"no model value: {kind.__name__}")
+
+
+_FIELDS: dict[type, tuple[str, ...] | None] = {}
+
+
+def _fields(kind: type) -> tuple[str, ...] | None:
+    """The field names of a dataclass (None for any other class), once per class."""
+    import dataclasses
+
+    names = tuple(f.name for f in dataclasses.fields(kind)) if dataclasses.is_dataclass(kind) else None
+    _FIELDS[kind] = names
+    return names
 
 
 def stamp(key: str, content: str) -> str:

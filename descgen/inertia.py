@@ -3,16 +3,27 @@
 Formulas: solid box, solid cylinder about its centroid with length along z (URDF's
 cylinder axis), solid sphere. These are the textbook values; tests check them against
 pinocchio's ``Inertia.FromBox/FromCylinder/FromSphere``.
+
+A primitive's tensor is plain Python: the spec loader derives one per ``from:`` link, and
+importing numpy for a few 3x3 products was ~60 ms of every cold ``validate``. It is also the
+same on every machine (numpy hands 3x3 products to the BLAS, whose kernel, and with it the
+rounding of the last bit, depends on the CPU). Mesh integrals stay numpy, imported when a
+mesh is integrated.
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-import numpy as np
+from .model import Box, Cylinder, Geometry, Inertia, Pose, Sphere, Vec3
 
-from .model import Box, Cylinder, Geometry, Inertia, Mesh, Pose, Sphere, Vec3
-from .transforms import Mat, rpy_matrix
+if TYPE_CHECKING:
+    import numpy as np
+
+    from .transforms import Mat
+
+Rows = tuple[Vec3, Vec3, Vec3]
 
 
 def volume(g: Geometry) -> float | None:
@@ -26,34 +37,59 @@ def volume(g: Geometry) -> float | None:
     return None
 
 
-def centroidal(g: Geometry, mass: float) -> Mat | None:
-    """Inertia tensor about the centroid, in the geometry frame; None for a mesh."""
+def centroidal(g: Geometry, mass: float) -> Rows | None:
+    """Inertia tensor about the centroid, in the geometry frame (rows); None for a mesh."""
+    principal = principal_moments(g, mass)
+    if principal is None:
+        return None
+    a, b, c = principal
+    return ((a, 0.0, 0.0), (0.0, b, 0.0), (0.0, 0.0, c))
+
+
+def principal_moments(g: Geometry, mass: float) -> Vec3 | None:
+    """The diagonal of the centroidal tensor (a primitive's axes are its principal axes)."""
     if isinstance(g, Box):
         x, y, z = g.size
-        return np.diag([mass * (y * y + z * z) / 12, mass * (x * x + z * z) / 12, mass * (x * x + y * y) / 12])
+        return (mass * (y * y + z * z) / 12, mass * (x * x + z * z) / 12, mass * (x * x + y * y) / 12)
     if isinstance(g, Cylinder):
         r, h = g.radius, g.length
         side = mass * (3 * r * r + h * h) / 12
-        return np.diag([side, side, mass * r * r / 2])
+        return (side, side, mass * r * r / 2)
     if isinstance(g, Sphere):
-        return np.eye(3) * (2.0 / 5.0 * mass * g.radius**2)
-    if isinstance(g, Mesh):
-        return None
+        s = 2.0 / 5.0 * mass * g.radius**2
+        return (s, s, s)
     return None
 
 
+def rotation(rpy: Vec3) -> Rows:
+    """URDF's fixed-axis roll-pitch-yaw rotation, Rz(yaw)·Ry(pitch)·Rx(roll), as rows; the
+    same products as :func:`descgen.transforms.rpy_matrix`, without numpy."""
+    r, p, y = rpy
+    cr, sr = math.cos(r), math.sin(r)
+    cp, sp = math.cos(p), math.sin(p)
+    cy, sy = math.cos(y), math.sin(y)
+    return (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
+
+
 def in_link_frame(g: Geometry, mass: float, origin: Pose) -> Inertia | None:
-    """The primitive's centroidal tensor rotated into link-frame axes."""
-    tensor = centroidal(g, mass)
-    if tensor is None:
+    """The primitive's centroidal tensor rotated into link-frame axes: R·diag(a, b, c)·Rᵀ."""
+    principal = principal_moments(g, mass)
+    if principal is None:
         return None
-    r = rpy_matrix(origin.rpy)
-    t = r @ tensor @ r.T
-    scale = float(np.max(np.abs(t))) or 1.0
-    t[np.abs(t) < scale * 1e-12] = 0.0  # rotation round-off, not physics
+    r = rotation(origin.rpy)
+    # (R·D) first, then ·Rᵀ, each sum left to right: R·D scales R's columns
+    rd = [(row[0] * principal[0], row[1] * principal[1], row[2] * principal[2]) for row in r]
+    t = [[rd[i][0] * r[j][0] + rd[i][1] * r[j][1] + rd[i][2] * r[j][2] for j in range(3)] for i in range(3)]
+    scale = max(abs(x) for row in t for x in row) or 1.0
+    floor = scale * 1e-12  # rotation round-off, not physics
 
     def v(i: int, j: int) -> float:
-        return float(t[i, j]) + 0.0
+        x = t[i][j]
+        return 0.0 if abs(x) < floor else x + 0.0
 
     return Inertia(v(0, 0), v(0, 1), v(0, 2), v(1, 1), v(1, 2), v(2, 2))
 
@@ -66,6 +102,8 @@ def mesh_properties(vertices: np.ndarray, faces: np.ndarray) -> tuple[float, Vec
     (D. Eberly, "Polyhedral Mass Properties (Revisited)", 2002). Only meaningful for a
     watertight mesh with consistent winding; an inward-wound mesh gives a negative volume,
     which is flipped."""
+    import numpy as np
+
     v0, v1, v2 = (np.asarray(vertices, dtype=np.float64)[np.asarray(faces)[:, i]] for i in range(3))
     d = np.cross(v1 - v0, v2 - v0)
     f1, f2, f3, g0, g1, g2 = _subexpressions(v0, v1, v2)
@@ -120,6 +158,10 @@ def from_mesh(
     """Centre of mass and centroidal tensor, in link-frame axes, of a watertight mesh of
     uniform density and the given mass, placed by the geometry's ``scale`` and ``origin``.
     None when the mesh bounds no volume."""
+    import numpy as np
+
+    from .transforms import rpy_matrix
+
     scaled = np.asarray(vertices, dtype=np.float64) * np.asarray(scale, dtype=np.float64)
     vol, centroid, per_density = mesh_properties(scaled, faces)
     if vol <= 0:

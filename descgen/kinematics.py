@@ -18,25 +18,63 @@ from . import mimic
 from .model import ROTATING, Joint, Robot
 from .transforms import Mat, axis_angle_matrix, pose_matrix
 
+# what a joint's motion needs that does not depend on q: its axis as an array, the axis's
+# norm, and the unit axis; None for no axis or a zero one
+_Axis = tuple[np.ndarray, float, tuple[float, float, float]] | None
 
-def motion(j: Joint, q: float) -> Mat:
-    t = np.eye(4)
-    if q == 0 or j.axis is None:
-        return t
+
+def _axis(j: Joint) -> _Axis:
+    if j.axis is None:
+        return None
     axis = np.asarray(j.axis, dtype=float)
     n = float(np.linalg.norm(axis))
     if n == 0:
+        return None
+    unit = axis / n
+    return axis, n, (float(unit[0]), float(unit[1]), float(unit[2]))
+
+
+def _motion(j: Joint, q: float, ax: _Axis) -> Mat:
+    t = np.eye(4)
+    if q == 0 or ax is None:
         return t
+    axis, n, unit = ax
     if j.type in ROTATING:
-        t[:3, :3] = axis_angle_matrix(tuple(float(c) for c in axis / n), q)
+        t[:3, :3] = axis_angle_matrix(unit, q)
     elif j.type == "prismatic":
         t[:3, 3] = q * axis / n
     return t
 
 
+def motion(j: Joint, q: float) -> Mat:
+    return _motion(j, q, _axis(j))
+
+
 def joint_transform(j: Joint, q: float = 0.0) -> Mat:
     """Pose of the child link frame in the parent link frame."""
     return pose_matrix(j.origin.xyz, j.origin.rpy) @ motion(j, q)
+
+
+_PARTS: list[tuple[Robot, dict[int, tuple[Mat, _Axis]]]] = []  # the last few robots' joint parts
+_PARTS_KEPT = 4
+
+
+def _parts(robot: Robot) -> dict[int, tuple[Mat, _Axis]]:
+    """Each joint's origin matrix and axis (by the joint object's identity: a broken description
+    may repeat a name), once per robot object: the sweep and the known poses call
+    :func:`forward` hundreds of times on one robot, and the origins were a third of it. The same
+    arithmetic as :func:`joint_transform`, so the same poses to the last bit."""
+    for seen, known in _PARTS:
+        if seen is robot:
+            return known
+    parts: dict[int, tuple[Mat, _Axis]] = {}
+    for j in robot.joints:
+        origin = pose_matrix(j.origin.xyz, j.origin.rpy)
+        origin.flags.writeable = False
+        parts[id(j)] = (origin, _axis(j))
+    _PARTS.insert(0, (robot, parts))  # holds the robot, so the ids stay its joints'
+    del _PARTS[_PARTS_KEPT:]
+    return parts
 
 
 def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat]:
@@ -48,6 +86,7 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat
     root = robot.root()
     if root is None:
         return {}
+    parts = _parts(robot)
     poses: dict[str, Mat] = {root: np.eye(4)}
     todo = [root]
     while todo:
@@ -55,7 +94,10 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat
         for j in robot.child_joints(parent):
             if j.child is None or j.child in poses:
                 continue
-            poses[j.child] = poses[parent] @ joint_transform(j, values.get(j.name, 0.0))
+            known = parts.get(id(j))
+            value = values.get(j.name, 0.0)
+            local = joint_transform(j, value) if known is None else known[0] @ _motion(j, value, known[1])
+            poses[j.child] = poses[parent] @ local
             todo.append(j.child)
     return poses
 

@@ -14,11 +14,14 @@ cannot be read or written is a cache miss.
 
 In front of the hashes sits a stat index, as git's index sits in front of its object hashes:
 one file (``stat-index``) mapping a mesh's path and stat data (size, mtime, inode, ctime, all
-in nanoseconds where the OS has them) to the content key last computed for it, so a warm run
-stats a mesh instead of reading and hashing its bytes (sha256 of the corpus's 350 MB is
-~0.3 s). A file whose stat data differs in any field is read and hashed again; one changed
-less than :data:`RACY_NS` before it was hashed is never indexed ("racily clean" in git's
-words: a rewrite within the file system's time-stamp granularity could keep every field).
+in nanoseconds where the OS has them) to the content key last computed for it and a copy of
+that key's entry, so a warm run stats a mesh instead of reading and hashing its bytes (sha256
+of the corpus's 350 MB is ~0.3 s) and reads one file, not one entry per mesh (~620 opens and
+JSON parses for the corpus). The copy is checked exactly as an entry file is; one that fails
+leaves the key, and the entry file is read instead. A file whose stat data differs in any
+field is read and hashed again; one changed less than :data:`RACY_NS` before it was hashed
+is never indexed ("racily clean" in git's words: a rewrite within the file system's
+time-stamp granularity could keep every field).
 The index is validated on read like the entries (bounded, typed; a bad entry is skipped, a
 bad file ignored whole).
 """
@@ -31,13 +34,13 @@ import json
 import math
 import os
 import re
+import sys
 import tempfile
 import threading
-from importlib import metadata
 from pathlib import Path
 from typing import Any
 
-from .cache_dir import cache_root
+from .cache_dir import CACHE_ENV, cache_root
 from .meshes import MAX_TRIANGLES, MeshFacts
 from .safeio import MIB
 
@@ -54,10 +57,43 @@ _INT64 = 1 << 63
 
 
 def _version(dist: str) -> str:
+    found = _dist_info_version(dist)
+    if found is not None:
+        return found
+    from importlib import metadata  # ~30 ms of imports (email, zipfile, ...): only when the scan fails
+
     try:
         return metadata.version(dist)
     except metadata.PackageNotFoundError:
         return "none"
+
+
+def _dist_info_version(dist: str) -> str | None:
+    """The ``Version:`` of the first ``<dist>-*.dist-info/METADATA`` on sys.path, as
+    importlib.metadata finds it (first path entry first); None for anything else (an egg,
+    a zip, two candidates in one folder), which importlib.metadata then answers."""
+    for entry in sys.path:
+        try:
+            names = [n for n in os.listdir(entry or ".") if n.lower().startswith(f"{dist}-")]
+        except OSError:
+            continue
+        if not names:
+            continue
+        infos = [n for n in names if n.endswith(".dist-info")]
+        if len(infos) != 1 or len(names) != 1:
+            return None
+        try:
+            with open(os.path.join(entry or ".", infos[0], "METADATA"), "rb") as f:
+                head = f.read(4096).decode("utf-8", "replace")
+        except OSError:
+            return None
+        for line in head.splitlines():
+            if line.startswith("Version: "):
+                return line[len("Version: ") :].strip() or None
+            if not line:
+                break
+        return None
+    return None
 
 
 @functools.cache
@@ -66,12 +102,19 @@ def _folder_name() -> str:
     return f"meshes-v{SCHEMA}-trimesh{_version('trimesh')}-pycollada{_version('pycollada')}"
 
 
+_FOLDERS: dict[str | None, Path | None] = {}  # DESCGEN_CACHE_DIR's value -> folder (asked per mesh)
+
+
 def folder() -> Path | None:
     """The folder of mesh entries, or None when caching is off (``DESCGEN_CACHE_DIR=``)."""
+    configured = os.environ.get(CACHE_ENV)  # read each time: a test or caller may change it
+    found = _FOLDERS.get(configured, _FOLDERS)
+    if found is not _FOLDERS:
+        return found  # type: ignore[return-value]
     base = cache_root()
-    if base is None:
-        return None
-    return base / _folder_name()
+    result = None if base is None else base / _folder_name()
+    _FOLDERS[configured] = result
+    return result
 
 
 def _entry(root: Path, key: str) -> Path:
@@ -202,8 +245,11 @@ def stat_of(st: os.stat_result) -> Stat:
     return (st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns)
 
 
-_INDEXES: dict[Path, dict[str, tuple[Stat, str]]] = {}  # cache folder -> its index, read once
-_ADDED: dict[Path, dict[str, tuple[Stat, str]]] = {}  # cache folder -> entries not yet written
+# path -> (stat, content key, the key's entry as written by put(), or None): the copy is
+# checked by _facts() when asked for, not when the index is read
+Row = tuple[Stat, str, Any]
+_INDEXES: dict[Path, dict[str, Row]] = {}  # cache folder -> its index, read once
+_ADDED: dict[Path, dict[str, Row]] = {}  # cache folder -> entries not yet written
 _INDEX_LOCK = threading.Lock()
 _AT_EXIT: list[bool] = []
 
@@ -211,6 +257,21 @@ _AT_EXIT: list[bool] = []
 def known_key(path: str, stat: Stat) -> str | None:
     """The content key recorded for ``path`` while its stat data was ``stat``; None when the
     index has none or the file changed since (any field differs)."""
+    entry = _row(path, stat)
+    return entry[1] if entry is not None else None
+
+
+def known(path: str, stat: Stat, kind: str) -> tuple[str, MeshFacts | None] | None:
+    """The content key recorded for ``path`` while its stat data was ``stat``, and the facts
+    the index holds for it (None when its copy is missing or not exactly what put() writes:
+    then :func:`get` reads the entry file). None when the file changed since."""
+    entry = _row(path, stat)
+    if entry is None:
+        return None
+    return entry[1], None if entry[2] is None else _facts(entry[2], entry[1], kind)
+
+
+def _row(path: str, stat: Stat) -> Row | None:
     root = folder()
     if root is None:
         return None
@@ -219,21 +280,25 @@ def known_key(path: str, stat: Stat) -> str | None:
         if index is None:
             index = _INDEXES[root] = _read_index(root)
         entry = index.get(path)
-    return entry[1] if entry is not None and entry[0] == stat else None
+    return entry if entry is not None and entry[0] == stat else None
 
 
-def remember(path: str, stat: Stat, key: str, hashed_at_ns: int) -> None:
-    """Record that ``path`` with ``stat`` held content ``key``, read at ``hashed_at_ns``
-    (``time.time_ns()`` before the read). A file changed within :data:`RACY_NS` of then is
-    left out: a second rewrite in the same time-stamp tick would look unchanged."""
+def remember(
+    path: str, stat: Stat, key: str, hashed_at_ns: int, kind: str = "", facts: MeshFacts | None = None
+) -> None:
+    """Record that ``path`` with ``stat`` held content ``key`` (of ``kind``, measured as
+    ``facts``), read at ``hashed_at_ns`` (``time.time_ns()`` before the read). A file changed
+    within :data:`RACY_NS` of then is left out: a second rewrite in the same time-stamp tick
+    would look unchanged."""
     root = folder()
     if root is None or not _valid_entry(path, stat, key):
         return
     if max(stat[1], stat[3]) >= hashed_at_ns - RACY_NS:
         return
+    doc = _doc(key, kind, facts) if facts is not None and _facts(_doc(key, kind, facts), key, kind) == facts else None
     with _INDEX_LOCK:
-        _INDEXES.setdefault(root, {})[path] = (stat, key)
-        _ADDED.setdefault(root, {})[path] = (stat, key)
+        _INDEXES.setdefault(root, {})[path] = (stat, key, doc)
+        _ADDED.setdefault(root, {})[path] = (stat, key, doc)
         if not _AT_EXIT:  # a caller that never calls save_index() still keeps what it hashed
             _AT_EXIT.append(True)
             atexit.register(save_index)
@@ -250,7 +315,7 @@ def save_index() -> None:
         merged.update(added)
         if len(merged) > MAX_INDEX_ENTRIES:  # a cache folder shared by everything: start over
             merged = dict(list(added.items())[-MAX_INDEX_ENTRIES:])
-        rows = [[p, *stat, key] for p, (stat, key) in merged.items()]
+        rows = [[p, *stat, key, doc] for p, (stat, key, doc) in merged.items()]
         text = json.dumps({"schema": SCHEMA, "entries": rows}, allow_nan=False, separators=(",", ":"))
         if len(text) <= MAX_INDEX_BYTES:
             _write_atomic(root / INDEX, text)
@@ -263,7 +328,7 @@ def forget() -> None:
         _ADDED.clear()
 
 
-def _read_index(root: Path) -> dict[str, tuple[Stat, str]]:
+def _read_index(root: Path) -> dict[str, Row]:
     """The index in ``root``: every entry that is exactly what save_index() writes; nothing
     when the file is missing, too large, not JSON or not the expected shape."""
     raw = _read_at_most(root / INDEX, MAX_INDEX_BYTES)
@@ -278,14 +343,14 @@ def _read_index(root: Path) -> dict[str, tuple[Stat, str]]:
     rows = doc["entries"]
     if type(rows) is not list or len(rows) > MAX_INDEX_ENTRIES:
         return {}
-    out: dict[str, tuple[Stat, str]] = {}
+    out: dict[str, Row] = {}
     for row in rows:
-        if type(row) is not list or len(row) != 6:
+        if type(row) is not list or len(row) != 7:
             continue
-        path, size, mtime, ino, ctime, key = row
+        path, size, mtime, ino, ctime, key, doc = row
         stat = (size, mtime, ino, ctime)
         if _valid_entry(path, stat, key):
-            out[path] = (stat, key)
+            out[path] = (stat, key, doc if type(doc) is dict else None)
     return out
 
 

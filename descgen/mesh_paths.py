@@ -28,7 +28,7 @@ from typing import Any
 
 from .findings import Finding, Where
 from .model import Collision, Link, Mesh, MeshState, Robot, Visual
-from .readers.xacro_file import find_package
+from .packages import find_package
 from .safeio import MIB
 
 MAX_MESH_BYTES = 64 * MIB  # the largest meshes of real robots are a few MB; a CAD dump may be tens
@@ -95,7 +95,7 @@ def _resolve(
         if folder is None:
             return Resolved("unresolved", package=package)
         inside, target = str(folder), _realpath(os.path.join(folder, rest), folders)
-    elif name.startswith("file://") or Path(name).is_absolute():
+    elif name.startswith("file://") or os.path.isabs(name):  # Path(name).is_absolute(), without a Path
         return Resolved("escapes")
     else:
         inside, target = _realpath(str(root), folders), _realpath(os.path.join(base, name), folders)

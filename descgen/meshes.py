@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import hashlib
 import io
+import math
 import os
 import re
 import stat
@@ -26,13 +27,14 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from .findings import InputError
 from .model import Robot, Vec3
 from .safeio import MIB, read_bounded
+
+if TYPE_CHECKING:  # numpy only where a mesh is parsed: a warm audit answers from the cache without it
+    import numpy as np
 
 FORMATS = ("stl", "obj", "dae")
 MAX_MESH_BYTES = 64 * MIB  # the largest example-robot-data mesh is 29 MB (go1 trunk.dae)
@@ -112,7 +114,7 @@ def _parsed(data: bytes, kind: str) -> Loaded | MeshError:
 _FACTS: dict[str, MeshFacts] = {}  # content key -> facts, for measure() (no arrays kept)
 
 
-def measure(path: Path) -> MeshFacts:
+def measure(path: Path | str) -> MeshFacts:
     """The facts of the mesh at ``path``; a mesh that cannot be read gives facts with a ``problem``.
 
     Looked up by content: in this process, then in the persistent cache (descgen/mesh_cache.py),
@@ -120,7 +122,7 @@ def measure(path: Path) -> MeshFacts:
     formats by trimesh. Hashing the bytes is ~100x cheaper than parsing them."""
     from . import mesh_cache  # imports this module
 
-    kind = path.suffix.lower().lstrip(".")
+    kind = os.path.splitext(path)[1].lower().lstrip(".")  # Path.suffix, without making a Path
     if kind not in FORMATS:
         return MeshFacts(problem=f"'.{kind}' is not a mesh format descgen reads (STL, OBJ, DAE)")
     st = _stat(path)
@@ -132,8 +134,10 @@ def measure(path: Path) -> MeshFacts:
         return known
     if key is None and st is not None and stat.S_ISREG(st.st_mode) and st.st_size <= MAX_MESH_BYTES:
         # unchanged since a run hashed it (the stat index): its facts without reading its bytes
-        indexed = mesh_cache.known_key(str(path), mesh_cache.stat_of(st))
-        facts = (_FACTS.get(indexed) or mesh_cache.get(indexed, kind)) if indexed is not None else None
+        row = mesh_cache.known(str(path), mesh_cache.stat_of(st), kind)
+        indexed, facts = row if row is not None else (None, None)
+        if indexed is not None and facts is None:
+            facts = _FACTS.get(indexed) or mesh_cache.get(indexed, kind)
         if indexed is not None and facts is not None:
             with _LOCK:
                 if seen is not None:
@@ -142,7 +146,7 @@ def measure(path: Path) -> MeshFacts:
             return facts
     hashed_at = time.time_ns()
     try:
-        data = read_bounded(path, "mesh", MAX_MESH_BYTES)
+        data = read_bounded(Path(path), "mesh", MAX_MESH_BYTES)
     except InputError as exc:
         return MeshFacts(problem=exc.findings[0].message)
     key = _content_key(data, kind)
@@ -151,7 +155,7 @@ def measure(path: Path) -> MeshFacts:
         facts = _measured(data, kind)
         mesh_cache.put(key, kind, facts)
     if st is not None:
-        mesh_cache.remember(str(path), mesh_cache.stat_of(st), key, hashed_at)
+        mesh_cache.remember(str(path), mesh_cache.stat_of(st), key, hashed_at, kind, facts)
     with _LOCK:
         if seen is not None:
             _BY_STAT[seen] = key
@@ -167,14 +171,14 @@ def _measured(data: bytes, kind: str) -> MeshFacts:
         return MeshFacts(problem=str(exc))
 
 
-def _stat(path: Path) -> os.stat_result | None:
+def _stat(path: Path | str) -> os.stat_result | None:
     try:
         return os.stat(path)
     except (OSError, ValueError):
         return None
 
 
-def _seen(path: Path, st: os.stat_result | None) -> tuple[str, int, int, int, int] | None:
+def _seen(path: Path | str, st: os.stat_result | None) -> tuple[str, int, int, int, int] | None:
     """The same file, unchanged since it was hashed in this process: no re-read."""
     return None if st is None else (str(path), st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
 
@@ -188,7 +192,8 @@ def _content_key(data: bytes, kind: str) -> str:
 
 
 # one binary STL triangle: normal, three corners (little-endian float32), attribute byte count
-_STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+_STL_RECORD_FIELDS = [("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attribute", "<u2")]
+_STL_RECORD_BYTES = 50
 _MERGE_DIGITS = 8  # trimesh merges vertices equal to 8 decimals (tol.merge = 1e-8)
 
 
@@ -202,9 +207,12 @@ def _stl_facts(data: bytes) -> MeshFacts | None:
     if len(data) < 84:
         return None
     (count,) = struct.unpack_from("<I", data, 80)
-    if count == 0 or count > MAX_TRIANGLES or len(data) != 84 + _STL_RECORD.itemsize * count:
+    if count == 0 or count > MAX_TRIANGLES or len(data) != 84 + _STL_RECORD_BYTES * count:
         return None  # trimesh tries binary by exactly this length test, then ASCII
-    corners = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)["corners"]
+    import numpy as np
+
+    record = np.dtype(_STL_RECORD_FIELDS)
+    corners = np.frombuffer(data, dtype=record, count=count, offset=84)["corners"]
     points = corners.reshape(-1, 3).astype(np.float64)
     if not np.isfinite(points).all():
         return None  # trimesh drops non-finite vertices first
@@ -243,6 +251,8 @@ def _stl_facts(data: bytes) -> MeshFacts | None:
 def _edge_facts(faces: np.ndarray) -> tuple[bool, bool, int]:
     """(every edge in exactly two triangles, every such pair runs in opposite directions,
     edges of one triangle only): trimesh.graph.is_watertight and :func:`_open_edges`."""
+    import numpy as np
+
     edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     ends = np.sort(edges, axis=1)
     lo = int(ends.min())
@@ -260,6 +270,8 @@ def _edge_facts(faces: np.ndarray) -> tuple[bool, bool, int]:
 
 
 def _parse(data: bytes, kind: str) -> Loaded:
+    import numpy as np
+
     unit = None
     if kind == "stl":
         _check_stl(data)
@@ -324,13 +336,15 @@ def _check_dae(data: bytes) -> float | None:
         meter = float(found.group(1))
     except ValueError:
         raise MeshError(f'<unit meter="{found.group(1).decode("ascii", "replace")}"> is not a number') from None
-    if not np.isfinite(meter) or meter <= 0:
+    if not math.isfinite(meter) or meter <= 0:
         raise MeshError(f'<unit meter="{meter}"> is not a positive length')
     return meter
 
 
 def _open_edges(faces: np.ndarray) -> int:
     """Edges used by one triangle only: why a mesh is not watertight, counted for the message."""
+    import numpy as np
+
     if len(faces) == 0:
         return 0
     edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
@@ -362,7 +376,7 @@ def facts_of_robot(robot: Robot) -> dict[str, MeshFacts]:
 
     out: dict[str, MeshFacts] = {}
     for name, file in robot.mesh_files:
-        out[name] = measure(Path(file))
+        out[name] = measure(file)
     mesh_cache.save_index()  # what was hashed here is known to the next run, even if this one is killed
     with _LOCK:
         _ROBOT_FACTS.insert(0, (robot, out))
@@ -380,15 +394,14 @@ def size_in_metres(facts: MeshFacts, scale: Sequence[float]) -> tuple[float, flo
     return (e[0], e[1], e[2])
 
 
-def corners_in_metres(facts: MeshFacts, scale: Sequence[float]) -> np.ndarray | None:
-    """The 8 corners of the scaled bounding box in the mesh frame (metres), or None."""
+def box_in_metres(
+    facts: MeshFacts, scale: Sequence[float]
+) -> tuple[tuple[float, float, float], tuple[float, float, float]] | None:
+    """Two opposite corners of the scaled bounding box in the mesh frame (metres), or None;
+    a negative scale mirrors the box, so a "low" coordinate may exceed its "high" one."""
     if facts.lower is None or facts.upper is None:
         return None
     unit = facts.unit_meter or 1.0
-    lo = np.array(facts.lower) * unit * np.array(scale)
-    hi = np.array(facts.upper) * unit * np.array(scale)
-    corners: np.ndarray = np.where(_HIGH, hi, lo)  # corner (i, j, k) takes hi on the axes where its bit is set
-    return corners
-
-
-_HIGH = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=bool)
+    lo = [v * unit * s for v, s in zip(facts.lower, scale, strict=True)]
+    hi = [v * unit * s for v, s in zip(facts.upper, scale, strict=True)]
+    return (lo[0], lo[1], lo[2]), (hi[0], hi[1], hi[2])

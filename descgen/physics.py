@@ -12,11 +12,9 @@ import math
 import statistics
 from collections.abc import Callable
 
-import numpy as np
-
 from .extent import MARKER
 from .model import Box, Cylinder, Geometry, Joint, Link, Robot, Sphere
-from .transforms import Mat, pose_matrix
+from .rigid import Frame, Vec, apply, cross, dot, rotate
 
 G = 9.80665  # m/s^2, standard gravity
 
@@ -82,17 +80,19 @@ def dims(g: Geometry | None) -> list[float]:
 # -- gravity --------------------------------------------------------------------------------
 
 
-def subtree_loads(robot: Robot, poses: dict[str, Mat]) -> dict[str, tuple[float, Mat]]:
+def subtree_loads(robot: Robot, poses: dict[str, Frame]) -> dict[str, tuple[float, Vec]]:
     """For every link: the mass of it and everything below it, and the sum of m * centre of
-    mass (root frame). One pass from the leaves up, so a 1000-link chain stays linear."""
-    own: dict[str, tuple[float, Mat]] = {}
+    mass (root frame), from the zero-pose frames (descgen/zero_pose.py). One pass from the
+    leaves up, so a 1000-link chain stays linear. Plain floats: the audit asks for every robot."""
+    own: dict[str, tuple[float, Vec]] = {}
     for name, pose in poses.items():
         lk = robot.link(name)
         if lk is not None and lk.inertial is not None and lk.inertial.mass and lk.inertial.mass > 0:
-            com = pose @ pose_matrix(lk.inertial.origin.xyz, lk.inertial.origin.rpy)
-            own[name] = (lk.inertial.mass, lk.inertial.mass * com[:3, 3])
+            m = lk.inertial.mass
+            com = apply(pose, lk.inertial.origin.xyz)  # the inertial frame's origin; its rpy moves no point
+            own[name] = (m, (m * com[0], m * com[1], m * com[2]))
         else:
-            own[name] = (0.0, np.zeros(3))
+            own[name] = (0.0, (0.0, 0.0, 0.0))
     order: list[str] = []
     root = robot.root()
     todo = [root] if root in poses else []
@@ -104,13 +104,13 @@ def subtree_loads(robot: Robot, poses: dict[str, Mat]) -> dict[str, tuple[float,
         seen.add(name)
         order.append(name)
         todo += [j.child for j in robot.child_joints(name) if j.child in poses]
-    total: dict[str, tuple[float, Mat]] = {}
+    total: dict[str, tuple[float, Vec]] = {}
     for name in reversed(order):  # children before parents
         mass, moment = own[name]
         for j in robot.child_joints(name):
             if j.child in total:
                 cm, cmo = total[j.child]
-                mass, moment = mass + cm, moment + cmo
+                mass, moment = mass + cm, (moment[0] + cmo[0], moment[1] + cmo[1], moment[2] + cmo[2])
         total[name] = (mass, moment)
     return total
 
@@ -130,33 +130,29 @@ def max_abs_harmonic(a: float, b: float, lo: float, hi: float) -> float:
     return max(abs(a * math.cos(q) + b * math.sin(q)) for q in candidates)
 
 
-def static_load(j: Joint, frame: Mat, mass: float, moment: Mat) -> float:
+def static_load(j: Joint, frame: Frame, mass: float, moment: Vec) -> float:
     """The largest static torque (N*m; force in N for a prismatic joint) that joint ``j``
     holds against gravity (-z of the root) over its own range, the other joints at zero.
 
     ``frame`` is the child link's pose at zero (the axis is in child coordinates), ``mass``
     and ``moment`` what :func:`subtree_loads` gives for the child. The axis must be non-zero."""
     assert j.axis is not None
-    g = np.array([0.0, 0.0, -G])
-    axis = frame[:3, :3] @ (np.array(j.axis) / math.hypot(*j.axis))
+    g = (0.0, 0.0, -G)
+    n = math.hypot(*j.axis)
+    axis = rotate(frame[0], (j.axis[0] / n, j.axis[1] / n, j.axis[2] / n))
     if j.type == "prismatic":
-        return abs(float(np.dot(mass * g, axis)))
+        return abs(dot((mass * g[0], mass * g[1], mass * g[2]), axis))
     # turning the load by q about the axis: torque(q) = A cos q + B sin q (Rodrigues;
     # the axis-parallel part of the lever gives none, since a x g is normal to a)
-    lever = moment - mass * frame[:3, 3]  # sum m (c - p)
-    k = _cross(axis, g)
-    a = float(np.dot(lever, k))
-    b = float(np.dot(_cross(axis, lever), k))
+    p = frame[1]
+    lever = (moment[0] - mass * p[0], moment[1] - mass * p[1], moment[2] - mass * p[2])  # sum m (c - p)
+    k = cross(axis, g)
+    a = dot(lever, k)
+    b = dot(cross(axis, lever), k)
     lm = j.limit
     lo = lm.lower if lm is not None and lm.lower is not None else -math.pi
     hi = lm.upper if lm is not None and lm.upper is not None else math.pi
     return max_abs_harmonic(a, b, min(lo, hi), max(lo, hi))
-
-
-def _cross(u: Mat, v: Mat) -> Mat:
-    """np.cross of two 3-vectors, term for term the same floats, without its axis handling
-    (ten times its cost on 3-vectors: it ran once per joint of every audited robot)."""
-    return np.array([u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]])
 
 
 def robot_scale(robot: Robot) -> float:

@@ -34,6 +34,9 @@ SPEC_CODES = Codes(unreadable="YAML002", not_regular="YAML010", too_large="YAML0
 # libyaml's composer when PyYAML was built with it (marks are the same), else pure Python
 _BASE: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 _STR = "tag:yaml.org,2002:str"
+_SEQ = "tag:yaml.org,2002:seq"
+_MAP = "tag:yaml.org,2002:map"
+_IMMUTABLE = frozenset(f"tag:yaml.org,2002:{t}" for t in ("int", "float", "bool", "null"))
 
 
 class _Loader(_BASE):  # type: ignore[valid-type,misc]
@@ -49,8 +52,10 @@ class _Loader(_BASE):  # type: ignore[valid-type,misc]
         self._tags: dict[tuple[str, tuple[bool, bool]], str] = {}
 
     def resolve(self, kind: type[yaml.Node], value: Any, implicit: Any) -> str:
-        if kind is not yaml.ScalarNode or self.yaml_path_resolvers:
+        if self.yaml_path_resolvers:
             return str(super().resolve(kind, value, implicit))
+        if kind is not yaml.ScalarNode:  # what BaseResolver.resolve answers for a collection without path resolvers
+            return _SEQ if kind is yaml.SequenceNode else _MAP
         key = (value, implicit)
         tag = self._tags.get(key)
         if tag is None:
@@ -92,21 +97,24 @@ def _fail(file: str, message: str, hint: str, line: int = 0, col: int = 0, code:
     return InputError([Finding(code, "error", message, hint, "file", Where(file, line, col))])
 
 
-def read_text(path: Path, display: str) -> str:
-    """The text of a spec file, refusing what cannot be a spec (type and size are checked
-    before anything is read: a FIFO or /dev/zero must not hang the loader)."""
-    raw = read_bounded(path, "spec", MAX_BYTES, display=display, codes=SPEC_CODES)
+def read_text(path: Path, display: str, what: str = "spec") -> str:
+    """The text of a YAML file (``what`` names it in messages: "spec", "trajectory"), refusing
+    what cannot be one (type and size are checked before anything is read: a FIFO or
+    /dev/zero must not hang the loader)."""
+    raw = read_bounded(path, what, MAX_BYTES, display=display, codes=SPEC_CODES)
     if b"\0" in raw:
-        raise _fail(display, "binary file (contains NUL bytes), not YAML", "name a .yaml spec", code="YAML003")
+        raise _fail(display, "binary file (contains NUL bytes), not YAML", f"name a .yaml {what}", code="YAML003")
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise _fail(display, f"not UTF-8 text (byte {exc.start})", "save the spec as UTF-8", code="YAML003") from None
+        raise _fail(
+            display, f"not UTF-8 text (byte {exc.start})", f"save the {what} as UTF-8", code="YAML003"
+        ) from None
 
 
-def load(path: Path, display: str | None = None) -> Document:
+def load(path: Path, display: str | None = None, what: str = "spec") -> Document:
     display = display or str(path)
-    text = read_text(path, display)
+    text = read_text(path, display, what)
     return loads(text, display)
 
 
@@ -164,6 +172,9 @@ class _Builder:
         self.key_marks: dict[Path_, tuple[int, int]] = {}
         self.value_marks: dict[Path_, tuple[int, int]] = {}
         self.count = 0
+        # (tag, text) -> value of the scalars whose value is immutable and depends only on
+        # them: a spec writes "0" thousands of times, and the constructor's path is long
+        self.scalars: dict[tuple[str, str], Any] = {}
 
     def build(self, node: yaml.Node, path: Path_, depth: int) -> Any:
         self.count += 1
@@ -186,51 +197,71 @@ class _Builder:
             )
         self.value_marks.setdefault(path, (node.start_mark.line + 1, node.start_mark.column + 1))
         if isinstance(node, yaml.MappingNode):
-            out: dict[Any, Any] = {}
-            for key_node, value_node in node.value:
-                if key_node.tag == "tag:yaml.org,2002:merge":
-                    raise _fail(
-                        self.file,
-                        "YAML merge keys (<<) are not supported",
-                        "write the keys out",
-                        key_node.start_mark.line + 1,
-                        key_node.start_mark.column + 1,
-                    )
-                if not isinstance(key_node, yaml.ScalarNode):
-                    raise _fail(
-                        self.file,
-                        "a mapping key must be a plain name",
-                        "use a plain name as key",
-                        key_node.start_mark.line + 1,
-                        key_node.start_mark.column + 1,
-                    )
-                key = self.construct(key_node)
-                if not isinstance(key, str):
-                    key = str(key_node.value)
-                kpath = (*path, key)
-                mark = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
-                if key in out:
-                    first = self.key_marks.get(kpath, (0, 0))
-                    raise _fail(
-                        self.file,
-                        f"duplicate key '{key}' (first at line {first[0]})",
-                        "remove one of them; YAML would silently keep the last",
-                        *mark,
-                        code="SPEC005",
-                    )
-                self.key_marks[kpath] = mark
-                out[key] = self.build(value_node, kpath, depth + 1)
-            return out
+            return self._mapping(node, path, depth)
         if isinstance(node, yaml.SequenceNode):
-            return [self.build(item, (*path, i), depth + 1) for i, item in enumerate(node.value)]
+            return [self._child(item, (*path, i), depth) for i, item in enumerate(node.value)]
         return self.construct(node)
+
+    def _child(self, node: yaml.Node, path: Path_, depth: int) -> Any:
+        """:meth:`build` of a child node. A plain text scalar (most of a spec) is taken here,
+        without the call: what :meth:`build` does with it, when no limit is near."""
+        if type(node) is yaml.ScalarNode and node.tag == _STR and depth < MAX_DEPTH and self.count < MAX_NODES:
+            self.count += 1
+            mark = node.start_mark
+            self.value_marks.setdefault(path, (mark.line + 1, mark.column + 1))
+            return node.value
+        return self.build(node, path, depth + 1)
+
+    def _mapping(self, node: yaml.MappingNode, path: Path_, depth: int) -> dict[Any, Any]:
+        out: dict[Any, Any] = {}
+        for key_node, value_node in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                raise _fail(
+                    self.file,
+                    "YAML merge keys (<<) are not supported",
+                    "write the keys out",
+                    key_node.start_mark.line + 1,
+                    key_node.start_mark.column + 1,
+                )
+            if not isinstance(key_node, yaml.ScalarNode):
+                raise _fail(
+                    self.file,
+                    "a mapping key must be a plain name",
+                    "use a plain name as key",
+                    key_node.start_mark.line + 1,
+                    key_node.start_mark.column + 1,
+                )
+            key = key_node.value if key_node.tag == _STR else self.construct(key_node)
+            if not isinstance(key, str):
+                key = str(key_node.value)
+            kpath = (*path, key)
+            start = key_node.start_mark
+            mark = (start.line + 1, start.column + 1)
+            if key in out:
+                first = self.key_marks.get(kpath, (0, 0))
+                raise _fail(
+                    self.file,
+                    f"duplicate key '{key}' (first at line {first[0]})",
+                    "remove one of them; YAML would silently keep the last",
+                    *mark,
+                    code="SPEC005",
+                )
+            self.key_marks[kpath] = mark
+            out[key] = self._child(value_node, kpath, depth)
+        return out
 
     def construct(self, node: yaml.Node) -> Any:
         """A scalar's Python value; explicit tags that cannot be built are errors, not crashes."""
         if node.tag == _STR and isinstance(node, yaml.ScalarNode):
             return node.value  # what SafeConstructor.construct_yaml_str returns, without its bookkeeping
+        key = (node.tag, node.value) if node.tag in _IMMUTABLE and isinstance(node, yaml.ScalarNode) else None
+        if key is not None and key in self.scalars:
+            return self.scalars[key]
         try:
-            return self.constructor.construct_object(node)
+            value = self.constructor.construct_object(node)
+            if key is not None:
+                self.scalars[key] = value
+            return value
         except (yaml.YAMLError, ValueError, TypeError, OverflowError, IndexError, KeyError, AttributeError) as exc:
             what = getattr(exc, "problem", None) or str(exc) or type(exc).__name__
             raise _fail(

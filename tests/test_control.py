@@ -190,3 +190,18 @@ def test_infinite_command_takes_the_error_path() -> None:
     errors = [e for e in cm.trace.events if e["event"] == "error"]
     assert errors and "infinite command on elbow_joint" in errors[0]["detail"]
     assert transitions(cm)[-1] == ("WarehouseArmSystem", "on_error", "unconfigured")
+
+
+def test_an_oversized_or_binary_trajectory_is_named_a_trajectory(tmp_path: Path) -> None:
+    from descgen.findings import InputError
+    from descgen.yamlsource import MAX_BYTES
+
+    big = tmp_path / "big.yaml"
+    big.write_bytes(b"#" * (MAX_BYTES + 1))
+    binary = tmp_path / "bin.yaml"
+    binary.write_bytes(b"points: [\0]\n")
+    for path, words in ((big, "a trajectory file is at most"), (binary, "name a .yaml trajectory")):
+        with pytest.raises(InputError) as err:
+            read_trajectory(path, ROBOT)
+        shown = f"{err.value.findings[0].message} {err.value.findings[0].hint}"
+        assert words in shown and "spec" not in shown, shown

@@ -164,6 +164,17 @@ def test_bad_launch_arg_values_exit_2(arg: str, tmp_path: Path) -> None:
     assert ran.returncode == 2 and "error[CTRL054]: --launch-arg" in ran.stderr
 
 
+@pytest.mark.parametrize("command", ["audit", "import"])
+def test_a_launch_arg_without_controllers_is_refused_not_ignored(command: str, tmp_path: Path) -> None:
+    out = tmp_path / "robot.yaml"
+    extra = ["-o", out] if command == "import" else []
+    ran = cli(command, XACRO, "--package-path", CORPUS, "--launch-arg", "joint_prefix:=joint", *extra, cwd=tmp_path)
+    assert ran.returncode == 2
+    assert "<command line>: error[CTRL055]: --launch-arg is given without --controllers" in ran.stderr
+    assert "add --controllers FILE" in ran.stderr and "Traceback" not in ran.stderr
+    assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
 def test_import_without_a_value_refuses_and_writes_nothing(tmp_path: Path) -> None:
     out = tmp_path / "robot.yaml"
     ran = cli("import", XACRO, "--package-path", CORPUS, "--controllers", CONTROLLERS, "-o", out, cwd=tmp_path)

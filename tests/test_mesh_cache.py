@@ -218,7 +218,10 @@ def test_an_unchanged_file_is_answered_from_the_index_without_reading_it(cache, 
     mesh, truth = _indexed(cache, tmp_path, monkeypatch)
     rows = json.loads(_index_file(cache).read_text())["entries"]
     st = mesh.stat()  # the row is the file's own stat data (an oracle outside descgen)
-    assert rows == [[str(mesh), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, _entries(cache)[0].stem]]
+    (entry,) = _entries(cache)
+    # ... and a copy of the mesh's entry file, so a warm run opens one file, not one per mesh
+    copy = json.loads(entry.read_text())
+    assert rows == [[str(mesh), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, entry.stem, copy]]
     _no_hashing(monkeypatch)
     _no_parsing(monkeypatch)
     assert meshes.measure(mesh) == truth
@@ -285,14 +288,16 @@ def _tamper_index(index: Path, how: str, mesh: Path) -> None:
             "bool inode": [*row[:3], True, *row[4:]],
             "negative size": [row[0], -1, *row[2:]],
             "relative path": ["box.stl", *row[1:]],
-            "short key": [*row[:5], row[5][:10]],
+            "short key": [*row[:5], row[5][:10], row[6]],
             "short row": row[:5],
+            "old six-field row": row[:6],
         }[how]
         index.write_text(json.dumps({**doc, "entries": [bad]}))
 
 
 HOW_INDEX = ["bad json", "huge", "list", "deep", "other schema", "fifo", "nan size"]
 HOW_INDEX += ["string size", "bool inode", "negative size", "relative path", "short key", "short row"]
+HOW_INDEX += ["old six-field row"]
 
 
 @pytest.mark.parametrize("how", HOW_INDEX)
@@ -307,6 +312,49 @@ def test_a_tampered_index_is_ignored(cache, tmp_path, monkeypatch, how: str) -> 
     monkeypatch.setattr(meshes, "_content_key", lambda data, kind: hashed.append(data) or real(data, kind))
     assert meshes.measure(mesh) == truth  # from the file's bytes, not from the index
     assert hashed == [mesh.read_bytes()]
+
+
+def _damage_copy(doc: dict[str, object], how: str) -> object:
+    return {
+        "wrong upper": {**doc, "upper": [9.0, 9.0, 9.0], "lower": [8.0, 8.0, 8.0], "sha256": "0" * 64},
+        "other kind": {**doc, "kind": "dae"},
+        "extra field": {**doc, "extra": 1},
+        "lower above upper": {**doc, "lower": doc["upper"], "upper": doc["lower"]},
+        "not a dict": ["x"],
+        "null": None,
+    }[how]
+
+
+HOW_COPY = ["wrong upper", "other kind", "extra field", "lower above upper", "not a dict", "null"]
+
+
+@pytest.mark.parametrize("how", HOW_COPY)
+def test_a_damaged_facts_copy_in_the_index_falls_back_to_the_entry_file(cache, tmp_path, monkeypatch, how) -> None:
+    # a copy that is not exactly what put() writes for this key and kind is a miss, never a
+    # wrong fact: the key still stands (the file is not hashed again) and the entry answers
+    mesh, truth = _indexed(cache, tmp_path, monkeypatch)
+    index = _index_file(cache)
+    doc = json.loads(index.read_text())
+    doc["entries"][0][6] = _damage_copy(doc["entries"][0][6], how)
+    index.write_text(json.dumps(doc))
+    key, facts = mesh_cache.known(str(mesh), mesh_cache.stat_of(mesh.stat()), "stl") or ("", "missing")
+    assert key == _entries(cache)[0].stem and facts is None
+    _forget()
+    _no_hashing(monkeypatch)
+    _no_parsing(monkeypatch)
+    opened: list[str] = []
+    real_get = mesh_cache.get
+    monkeypatch.setattr(mesh_cache, "get", lambda k, kind: opened.append(k) or real_get(k, kind))
+    assert meshes.measure(mesh) == truth
+    assert opened == [key]
+
+
+def test_a_warm_run_reads_no_entry_file(cache, tmp_path, monkeypatch) -> None:
+    mesh, truth = _indexed(cache, tmp_path, monkeypatch)
+    _no_hashing(monkeypatch)
+    _no_parsing(monkeypatch)
+    monkeypatch.setattr(mesh_cache, "get", lambda *_: pytest.fail("an entry file was read"))
+    assert meshes.measure(mesh) == truth
 
 
 def test_an_index_entry_pointing_at_another_meshes_key_is_what_stat_data_prevents(cache, tmp_path, monkeypatch):

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from descgen import display, physics
-from descgen.kinematics import forward
 from descgen.model import Box, Collision, Inertial, Joint, Limit, Link, Pose, Robot
 from descgen.naming import mirror_name
+from descgen.zero_pose import forward  # the frames the audit rules pose robots with
 
 G = 9.80665
 
@@ -121,3 +121,6 @@ def test_thousand_off(value: float, expected: float | None) -> None:
 
 def test_mm_shows_metres_in_millimetres() -> None:
     assert display.mm((0.1, 0.0, -0.25)) == "100.0, 0.0, -250.0"
+    # FK's rounding residue (-1e-17 m) and anything under -0.05 mm show as 0.0, not -0.0;
+    # -0.06 mm rounds to -0.1 and keeps its sign
+    assert display.mm((-1e-17, -4.9e-5, -0.00006)) == "0.0, 0.0, -0.1"

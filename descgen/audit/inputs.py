@@ -11,10 +11,8 @@ from pathlib import Path
 from .. import mesh_paths
 from ..findings import Finding, Where
 from ..model import MeshState, Robot, Ros2Control
-from ..readers.controllers import read_controllers_text
 from ..readers.srdf import read_srdf_text
 from ..readers.urdf import read_urdf_text
-from ..readers.xacro_file import expand_located
 from ..safeio import check_file, read_bounded, read_head
 from .registry import run
 
@@ -60,6 +58,8 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
     else:
         sources = None  # a Xacro's: where each expanded element was written, so findings point there
         if kind == "xacro":
+            from ..readers.xacro_file import expand_located  # not for a plain URDF
+
             expansion = expand_located(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
             data, sources = expansion.xml, expansion.sources
         else:
@@ -84,6 +84,8 @@ def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Findin
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
+        from ..readers.controllers import read_controllers_text  # PyYAML only when a YAML is given
+
         controllers, rate, more = read_controllers_text(
             _read(options.controllers, "controllers YAML").decode("utf-8", "replace"),
             str(options.controllers),

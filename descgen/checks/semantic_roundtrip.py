@@ -7,13 +7,13 @@ import math
 from pathlib import Path
 from typing import Any
 
-import yaml
 from lxml import etree
 
 from .. import derive
 from ..findings import Finding, Where
 from ..model import Interface, Robot
 from ..xmlcompare import line_of, parse
+from .controllers import safe_load
 
 
 def _f(text: str | None) -> float | None:
@@ -231,7 +231,7 @@ def controllers_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> l
     if rc is None or rel not in files:
         return []
     d = _Diffs(str(where / rel), "GEN033", "controllers YAML")
-    doc = yaml.safe_load(files[rel]) or {}
+    doc = safe_load(files[rel]) or {}
     cm = doc.get("controller_manager", {}).get("ros__parameters", {})
     d.eq("controller_manager/update_rate", rc.update_rate, cm.get("update_rate"))
     for c in rc.controllers:

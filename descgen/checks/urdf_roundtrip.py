@@ -17,7 +17,6 @@ check_urdf (urdfdom's own C++ parser, check 3) reads every URDF as well.
 from __future__ import annotations
 
 import io
-import math
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any, cast
@@ -25,9 +24,9 @@ from typing import Any, cast
 import numpy as np
 
 from ..findings import Finding, Where
-from ..model import Box, Collision, Cylinder, Geometry, Inertial, Joint, Link, Mesh, Robot, Sphere, Visual
+from ..model import Box, Collision, Cylinder, Geometry, Inertial, Joint, Link, Mesh, Pose, Robot, Sphere, Visual
 from ..readers import urdf_readback as rb
-from ..transforms import pose_matrix
+from ..rigid import rpy_rot
 from ..xmlcompare import line_of, parse
 
 TOL = 1e-9
@@ -39,11 +38,13 @@ def _close(a: Any, b: Any) -> bool:
     (a 1000-link model compares ~20,000 fields; numpy costs ~20 us per call)."""
     if a is None or b is None:
         return a is None and b is None
+    if type(a) is float and type(b) is float:  # most fields: one number each
+        return _near(a, b)
     fa: list[float] = []
     fb: list[float] = []
     sa, sb = _shape(a, fa), _shape(b, fb)
     if sa is not None and sb is not None:
-        return sa == sb and all(_near(x, y) for x, y in zip(fa, fb, strict=True))
+        return sa == sb and all(map(_near, fa, fb))
     try:
         x = np.asarray(a, dtype=float)
         y = np.asarray(b, dtype=float)
@@ -53,10 +54,9 @@ def _close(a: Any, b: Any) -> bool:
 
 
 def _near(x: float, y: float) -> bool:
-    # numpy's isclose: infinities are close only to themselves, NaN to nothing
-    if math.isinf(x) or math.isinf(y):
-        return x == y
-    return abs(x - y) <= TOL
+    # numpy's isclose: infinities are close only to themselves (inf - inf is NaN, so the
+    # equality decides), NaN to nothing (neither test holds)
+    return x == y or abs(x - y) <= TOL
 
 
 def _shape(v: Any, flat: list[float]) -> tuple[int, ...] | None:
@@ -71,6 +71,9 @@ def _shape(v: Any, flat: list[float]) -> tuple[int, ...] | None:
         flat.extend(float(x) for x in v.ravel().tolist())
         return tuple(v.shape)
     if isinstance(v, tuple | list):
+        if all(type(x) is float for x in v):  # a vector, or a matrix's row: no recursion
+            flat.extend(v)
+            return (len(v),)
         shapes = {_shape(x, flat) for x in v}
         inner = shapes.pop() if len(shapes) == 1 else () if not shapes else None
         if inner is None:
@@ -85,6 +88,9 @@ def _show(v: Any) -> str:
     return repr(v)
 
 
+Field = str | tuple[str, ...]
+
+
 class _Compare:
     def __init__(self, lines: dict[tuple[str, str], int], file: str, reader: str) -> None:
         self.lines = lines
@@ -92,7 +98,10 @@ class _Compare:
         self.reader = reader
         self.found: list[Finding] = []
 
-    def diff(self, kind: str, name: str, field: str, model: Any, urdf: Any) -> None:
+    def diff(self, kind: str, name: str, field: Field, model: Any, urdf: Any) -> None:
+        """A finding at ``kind:name``; ``field`` is its path, or the path's parts (joined here,
+        so that the ~20,000 equal fields of a 1000-link robot build no text)."""
+        field = field if isinstance(field, str) else "/".join(field)
         line = self.lines.get((kind, name), 0)
         self.found.append(
             Finding(
@@ -106,10 +115,41 @@ class _Compare:
             )
         )
 
-    def eq(self, kind: str, name: str, field: str, model: Any, urdf: Any, exact: bool = False) -> None:
+    def eq(self, kind: str, name: str, field: Field, model: Any, urdf: Any, exact: bool = False) -> None:
         same = (model == urdf) if exact else _close(model, urdf)
         if not same:
             self.diff(kind, name, field, model, urdf)
+
+    def eq_matrix(self, kind: str, name: str, field: Field, model: Rows | None, urdf: Rows) -> None:
+        """``eq`` for a matrix (origins, inertia tensors): both sides are rows of numbers
+        (the readers build them so), compared without _close's generic shape walk; a
+        difference shows the model's as the array it is."""
+        if model is None or not _rows_close(model, urdf):
+            self.diff(kind, name, field, None if model is None else np.asarray(model, dtype=float), urdf)
+
+
+Rows = Sequence[Sequence[float]]
+
+
+def _rows_close(a: Rows, b: Rows) -> bool:
+    """``_close`` for two matrices of plain numbers: same shape, every element within TOL."""
+    if len(a) != len(b):
+        return False
+    for ra, rb_ in zip(a, b, strict=True):
+        if len(ra) != len(rb_):
+            return False
+        for x, y in zip(ra, rb_, strict=True):
+            if not (x == y or abs(x - y) <= TOL):
+                return False
+    return True
+
+
+def _pose(p: Pose) -> tuple[tuple[float, ...], ...]:
+    """The model's 4x4 transform of an origin, in plain floats (``descgen.rigid``: the formula
+    of ``transforms.pose_matrix`` without numpy's ~10 us per small array)."""
+    r0, r1, r2 = rpy_rot(p.rpy)
+    x, y, z = p.xyz
+    return ((*r0, float(x)), (*r1, float(y)), (*r2, float(z)), (0.0, 0.0, 0.0, 1.0))
 
 
 def _geometry(g: Geometry | None) -> dict[str, Any]:
@@ -142,17 +182,17 @@ def _shapes(c: _Compare, link: str, tag: str, ours: Sequence[Visual | Collision]
         return
     for i, (a, b) in enumerate(zip(ours, theirs, strict=True)):
         f = f"{tag}[{i}]"
-        c.eq("link", link, f"{f}/name", a.name, b.name, exact=True)
-        c.eq("link", link, f"{f}/origin", pose_matrix(a.origin.xyz, a.origin.rpy), b.origin)
+        c.eq("link", link, (f, "name"), a.name, b.name, exact=True)
+        c.eq_matrix("link", link, (f, "origin"), _pose(a.origin), b.origin)
         ga, gb = _geometry(a.geometry), _their_geometry(b.geometry)
         if ga["type"] != gb["type"]:
-            c.diff("link", link, f"{f}/geometry", ga["type"], gb["type"])
+            c.diff("link", link, (f, "geometry"), ga["type"], gb["type"])
             continue
         for key in ga:
             if key != "type":
-                c.eq("link", link, f"{f}/geometry/{key}", ga[key], gb[key], exact=key == "filename")
+                c.eq("link", link, (f, "geometry", key), ga[key], gb[key], exact=key == "filename")
         if isinstance(a, Visual):
-            c.eq("link", link, f"{f}/material", a.material, b.material, exact=True)
+            c.eq("link", link, (f, "material"), a.material, b.material, exact=True)
 
 
 def _inertial(c: _Compare, link: str, ours: Inertial | None, theirs: rb.Inertial | None) -> None:
@@ -161,9 +201,9 @@ def _inertial(c: _Compare, link: str, ours: Inertial | None, theirs: rb.Inertial
             c.diff("link", link, "inertial", ours is not None, theirs is not None)
         return
     c.eq("link", link, "inertial/mass", ours.mass, theirs.mass)
-    c.eq("link", link, "inertial/origin", pose_matrix(ours.origin.xyz, ours.origin.rpy), theirs.origin)
-    tensor = np.array(ours.inertia.matrix()) if ours.inertia else None
-    c.eq("link", link, "inertial/inertia", tensor, theirs.inertia)
+    c.eq_matrix("link", link, "inertial/origin", _pose(ours.origin), theirs.origin)
+    tensor = ours.inertia.matrix() if ours.inertia else None
+    c.eq_matrix("link", link, "inertial/inertia", tensor, theirs.inertia)
 
 
 def _joint(c: _Compare, ours: Joint, theirs: rb.Joint) -> None:
@@ -171,7 +211,7 @@ def _joint(c: _Compare, ours: Joint, theirs: rb.Joint) -> None:
     c.eq("joint", n, "type", ours.type, theirs.type, exact=True)
     c.eq("joint", n, "parent", ours.parent, theirs.parent, exact=True)
     c.eq("joint", n, "child", ours.child, theirs.child, exact=True)
-    c.eq("joint", n, "origin", pose_matrix(ours.origin.xyz, ours.origin.rpy), theirs.origin)
+    c.eq_matrix("joint", n, "origin", _pose(ours.origin), theirs.origin)
     if ours.axis is not None:
         c.eq("joint", n, "axis", ours.axis, theirs.axis)
     lm, tl = ours.limit if ours.type != "fixed" else None, theirs.limit
@@ -182,7 +222,7 @@ def _joint(c: _Compare, ours: Joint, theirs: rb.Joint) -> None:
         # a bound the model does not have is not written, and urdfdom reads a missing lower/upper as 0
         lower, upper = (0.0 if v is None else v for v in (lm.lower, lm.upper))
         for attr, value in (("lower", lower), ("upper", upper), ("effort", lm.effort), ("velocity", lm.velocity)):
-            c.eq("joint", n, f"limit/{attr}", value, getattr(tl, attr))
+            c.eq("joint", n, ("limit", attr), value, getattr(tl, attr))
     dyn = ours.dynamics
     c.eq("joint", n, "dynamics", None if dyn is None else (dyn.damping, dyn.friction), theirs.dynamics)
     mm, tm = ours.mimic, theirs.mimic

@@ -1,16 +1,77 @@
-"""Check 1: expanding ``<robot>.urdf.xacro`` with the xacro package gives ``<robot>.urdf``."""
+"""Check 1: expanding ``<robot>.urdf.xacro`` with the xacro package gives ``<robot>.urdf``.
+
+Every expansion of a rendered Xacro (here, and the MoveIt package's in moveit/proof.py) goes
+through :func:`expand_packages`, which keeps the expanded XML in the result cache
+(descgen/result_cache.py) under the hash of every file the expansion can read, its arguments,
+the environment variables the sandbox lets through, descgen's own source and xacro's
+version: a ``check`` of an unchanged package compares the same XML without running xacro
+again. The comparisons themselves run every time.
+"""
 
 from __future__ import annotations
 
+import os
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
 from lxml import etree
 
+from .. import result_cache
+from ..evidence_hash import sha256
 from ..findings import Finding, InputError, Where
 from ..model import Robot, Ros2Control
-from ..readers.xacro_file import expand as sandboxed_expand
 from ..xmlcompare import first_difference, parse
+
+# what the sandbox lets an expansion read besides its files (readers/xacro_file.ENV_ALLOWED,
+# spelled out here so a cache hit does not import xacro; tests/test_result_cache.py compares)
+SANDBOX_ENV = ("ROS_DISTRO", "ROS_PYTHON_VERSION", "ROS_VERSION")
+_KIND = "xacro-expansion"
+
+
+def _read_by_xacro(rel: str) -> bool:
+    """The files of a rendered package an expansion may read: Xacro, YAML, the manifest."""
+    return rel.endswith((".xacro", ".yaml")) or rel == "package.xml"
+
+
+def expand_packages(
+    packages: Mapping[str, Mapping[str, str]], package: str, xacro_path: str, args: Mapping[str, str]
+) -> tuple[str, str]:
+    """Expand ``xacro_path`` of ``package`` with Xacro arguments ``args``, every package of
+    ``packages`` (name -> rendered files) laid out in a scratch folder ``<scratch>/<name>/`` so
+    that ``$(find <name>)`` resolves to it; returns the XML and the folder the package was
+    expanded in (a value the XML may hold, e.g. a ``$(find)`` path). An InputError when the
+    sandbox refuses or xacro fails (never cached: it is raised again every time)."""
+    key = result_cache.key(
+        _KIND,
+        {
+            "packages": {
+                name: {rel: sha256(text) for rel, text in sorted(files.items()) if _read_by_xacro(rel)}
+                for name, files in sorted(packages.items())
+            },
+            "top": [package, xacro_path],
+            "args": sorted(args.items()),
+            "env": {name: os.environ.get(name) for name in SANDBOX_ENV},
+        },
+        ("xacro", "lxml"),
+    )
+    hit = result_cache.get(_KIND, key)
+    if isinstance(hit, dict) and isinstance(hit.get("xml"), str) and isinstance(hit.get("folder"), str):
+        return hit["xml"], hit["folder"]
+    from ..readers.xacro_file import expand as sandboxed_expand
+
+    with tempfile.TemporaryDirectory(prefix="descgen-xacro-") as tmp:
+        root = Path(tmp)
+        for name, files in packages.items():
+            for rel, text in files.items():
+                if _read_by_xacro(rel):
+                    target = root / name / rel
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    target.write_text(text, encoding="utf-8")
+        folder = root / package
+        xml = sandboxed_expand(folder / xacro_path, xacro_path, dict(args), package_paths=[root]).decode("utf-8")
+    result_cache.put(_KIND, key, {"xml": xml, "folder": str(folder)})
+    return xml, str(folder)
 
 
 def expand(files: dict[str, str], xacro_path: str) -> str:
@@ -24,16 +85,7 @@ def expand(files: dict[str, str], xacro_path: str) -> str:
 def expand_with(files: dict[str, str], xacro_path: str, package: str, args: dict[str, str]) -> tuple[str, str]:
     """Expand with Xacro arguments, the package laid out as ``<scratch>/<package>/`` so that
     ``$(find <package>)`` resolves to it; returns the XML and the package folder."""
-    with tempfile.TemporaryDirectory(prefix="descgen-xacro-") as tmp:
-        root = Path(tmp)
-        folder = root / package
-        for rel, text in files.items():
-            if rel.endswith((".xacro", ".yaml")) or rel == "package.xml":
-                target = folder / rel
-                target.parent.mkdir(parents=True, exist_ok=True)
-                target.write_text(text, encoding="utf-8")
-        xml = sandboxed_expand(folder / xacro_path, xacro_path, args, package_paths=[root]).decode("utf-8")
-        return xml, str(folder)
+    return expand_packages({package: files}, package, xacro_path, args)
 
 
 def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:

@@ -46,7 +46,7 @@ class _Problems:
 def read_trajectory(path: Path, robot: Robot) -> Trajectory:
     """A trajectory file (controller, joints, points of time_from_start and positions), checked
     so that a run can neither crash on it nor pass without running anything."""
-    doc = load(path)
+    doc = load(path, what="trajectory")
     data = doc.data
     bad = _Problems(doc)
     if not isinstance(data, dict):

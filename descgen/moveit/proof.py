@@ -20,6 +20,7 @@ import yaml
 from lxml import etree
 
 from .. import model as m
+from ..checks.controllers import safe_load
 from ..findings import Finding, InputError, Where
 from . import derive
 from .render import moveit_package_name
@@ -43,7 +44,7 @@ class _Proof:
 
     def yaml(self, rel: str) -> Any:
         try:
-            return yaml.safe_load(self.files[rel])
+            return safe_load(self.files[rel])  # yaml.safe_load, through libyaml when there
         except yaml.YAMLError as exc:
             self.fail("GEN092", rel, f"does not parse as YAML: {str(exc).splitlines()[0]}")
             return None
@@ -224,25 +225,19 @@ def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> No
     """GEN093: config/<robot>.urdf.xacro expanded as the builder expands it (default arguments;
     both packages found by ``$(find)``) gives every planning joint's position state the initial
     state's value. Sandboxed like every Xacro made from a spec (checks/xacro_expand.py)."""
-    from ..readers.xacro_file import expand
+    from ..checks.xacro_expand import expand_packages  # the expansion cached like check 1's
     from ..render.context import package_name
 
     rel = f"config/{robot.name}.urdf.xacro"
     if rel not in p.files:
         return
-    with tempfile.TemporaryDirectory(prefix="descgen-moveit-xacro-") as scratch:
-        root = Path(scratch)
-        for pkg, files in ((package_name(robot), description), (moveit_package_name(robot), p.files)):
-            for name, text in files.items():
-                if name.endswith((".xacro", ".yaml")) or name == "package.xml":
-                    (root / pkg / name).parent.mkdir(parents=True, exist_ok=True)
-                    (root / pkg / name).write_text(text, encoding="utf-8")
-        try:
-            xml = expand(root / moveit_package_name(robot) / rel, rel, {}, package_paths=[root])
-        except InputError as exc:
-            p.fail("GEN093", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
-            return
-    doc = etree.fromstring(xml, etree.XMLParser(resolve_entities=False, no_network=True))
+    moveit = moveit_package_name(robot)
+    try:
+        xml, _ = expand_packages({package_name(robot): description, moveit: p.files}, moveit, rel, {})
+    except InputError as exc:
+        p.fail("GEN093", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
+        return
+    doc = etree.fromstring(xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
     for name, value in derive.initial_positions(robot):
         params = [
             e
@@ -264,17 +259,16 @@ def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> No
 
 
 def _package_xml(p: _Proof, robot: m.Robot) -> None:
-    from catkin_pkg.package import InvalidPackage, parse_package_string
+    from ..checks.package import invalid_package, read_manifest  # catkin_pkg's verdict, cached
 
     rel = "package.xml"
     try:
-        pkg = parse_package_string(p.files[rel])
-        pkg.validate()
-    except (InvalidPackage, ValueError) as exc:
+        pkg = read_manifest(p.files[rel])
+    except (invalid_package(), ValueError) as exc:
         p.fail("GEN092", rel, f"is invalid: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
         return
     p.equal(rel, "the package name", pkg.name, moveit_package_name(robot))
     from ..render.context import package_name
 
-    if package_name(robot) not in {d.name for d in pkg.exec_depends}:
+    if package_name(robot) not in set(pkg.exec_depends):
         p.fail("GEN090", rel, f"does not exec_depend on {package_name(robot)}")

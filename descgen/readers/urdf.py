@@ -109,9 +109,14 @@ class _Reader:
         # attribute text -> its numbers, when valid: descriptions repeat "0 0 0", "1 1 1", "0 0 1"
         # (a generated one most of its values), and a lookup is several times cheaper than float()
         self.parsed: dict[str, tuple[float, ...]] = {}
+        self.numbers: dict[str, float] = {}  # the same for one-number attributes (mass, ixx, ...)
+        # (xyz text, rpy text) -> its Pose: origins repeat too, and a Pose is immutable
+        self.poses: dict[tuple[str | None, str | None], m.Pose] = {}
 
     def where(self, e: etree._Element) -> Where:
-        return self.located.get(e) or Where(self.file, line_of(e))
+        if self.located:
+            return self.located.get(e) or Where(self.file, line_of(e))
+        return Where(self.file, line_of(e))  # a plain URDF: no element lookup (an lxml proxy hash each)
 
     def problem(self, e: etree._Element, message: str, hint: str, subject: str) -> None:
         self.findings.append(Finding("READ010", "error", message, hint, subject, self.where(e)))
@@ -158,15 +163,32 @@ class _Reader:
         )
 
     def number(self, e: etree._Element | None, attr: str, subject: str) -> float | None:
+        raw = e.get(attr) if e is not None else None
+        if raw is None:
+            return None
+        known = self.numbers.get(raw)
+        if known is not None:
+            return known
         v = self.floats(e, attr, 1, None, subject)
-        return None if v is None else v[0]
+        if v is None:
+            return None
+        self.numbers[raw] = v[0]  # only a valid value: a bad one is reported at each place
+        return v[0]
 
     def pose(self, e: etree._Element | None, subject: str) -> m.Pose:
         if e is None:
             return m.Pose()
+        texts = (e.get("xyz"), e.get("rpy"))
+        known = self.poses.get(texts)
+        if known is not None:
+            return known
+        before = len(self.findings)
         xyz = self.floats(e, "xyz", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
         rpy = self.floats(e, "rpy", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
-        return m.Pose((xyz[0], xyz[1], xyz[2]), (rpy[0], rpy[1], rpy[2]))
+        pose = m.Pose((xyz[0], xyz[1], xyz[2]), (rpy[0], rpy[1], rpy[2]))
+        if len(self.findings) == before:  # a bad origin is reported wherever it is written
+            self.poses[texts] = pose
+        return pose
 
     def geometry(self, e: etree._Element | None, subject: str) -> m.Geometry | None:
         if e is None:

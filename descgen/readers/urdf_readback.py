@@ -124,14 +124,21 @@ class Robot:
     materials: tuple[Material, ...]
 
 
+def _first(e: etree._Element, tag: str) -> etree._Element | None:
+    """``e.find(tag)`` (the first child element named ``tag``, no namespace) without lxml's
+    path parser, which costs more than the rest of reading an element."""
+    return next(e.iterchildren(tag), None)
+
+
 def _line(e: etree._Element) -> int:
     v = e.sourceline
     return v if isinstance(v, int) else 0
 
 
-def _number(text: str, what: str, e: etree._Element) -> float:
+def _number(text: str, e: etree._Element, key: str) -> float:
+    """``text``, attribute ``key`` of ``e`` (or one of its tokens), as a number."""
     if not _NUMBER.fullmatch(text.strip()):
-        raise ReadbackError(f"{what} is not a number: {text!r}", _line(e))
+        raise ReadbackError(f"<{e.tag}> {key} is not a number: {text!r}", _line(e))
     return float(text)
 
 
@@ -141,7 +148,7 @@ def _attr(e: etree._Element, key: str, default: float | None = None) -> float:
         if default is None:
             raise ReadbackError(f"<{e.tag}> has no {key}", _line(e))
         return default
-    return _number(value, f"<{e.tag}> {key}", e)
+    return _number(value, e, key)
 
 
 def _numbers(e: etree._Element, key: str, n: int | None, default: tuple[float, ...] | None) -> tuple[float, ...]:
@@ -150,13 +157,26 @@ def _numbers(e: etree._Element, key: str, n: int | None, default: tuple[float, .
         if default is None:
             raise ReadbackError(f"<{e.tag}> has no {key}", _line(e))
         return default
-    out = tuple(_number(t, f"<{e.tag}> {key}", e) for t in value.split())
+    tokens = value.split()
+    if not all(map(_NUMBER.fullmatch, tokens)):  # the common case checked in one C loop
+        for t in tokens:
+            _number(t, e, key)  # raises at the first token that is not a number
+    out = tuple(map(float, tokens))
     if n is not None and len(out) != n:
         raise ReadbackError(f"<{e.tag}> {key} needs {n} numbers, has {len(out)}: {value!r}", _line(e))
     return out
 
 
+# three numbers apart by spaces (how XML hands over any attribute whose whitespace was not
+# written as a character reference): read in one match; anything else takes _numbers's path
+_VEC3 = re.compile(rf" *({_NUMBER.pattern}) +({_NUMBER.pattern}) +({_NUMBER.pattern}) *")
+
+
 def _vec3(e: etree._Element, key: str, default: Vec3 | None) -> Vec3:
+    value = e.get(key)
+    m = None if value is None else _VEC3.fullmatch(value)
+    if m is not None:
+        return (float(m[1]), float(m[2]), float(m[3]))
     x, y, z = _numbers(e, key, 3, default)
     return (x, y, z)
 
@@ -176,15 +196,27 @@ def rpy_matrix(xyz: Vec3, rpy: Vec3) -> Matrix:
 _ZERO: Vec3 = (0.0, 0.0, 0.0)
 
 
+def _kids(e: etree._Element) -> dict[str, etree._Element]:
+    """The first child element of each tag (no namespace, like ``find``)."""
+    out: dict[str, etree._Element] = {}
+    for c in e.iterchildren(etree.Element):
+        out.setdefault(c.tag, c)
+    return out
+
+
 def _origin(parent: etree._Element) -> Matrix:
-    e = parent.find("origin")
+    return _pose(_first(parent, "origin"))
+
+
+def _pose(e: etree._Element | None) -> Matrix:
+    """The transform of an ``<origin>`` element, identity when there is none."""
     if e is None:
         return rpy_matrix(_ZERO, _ZERO)
     return rpy_matrix(_vec3(e, "xyz", _ZERO), _vec3(e, "rpy", _ZERO))
 
 
 def _geometry(parent: etree._Element) -> Geometry:
-    g = parent.find("geometry")
+    g = _first(parent, "geometry")
     shapes = [] if g is None else [c for c in g if isinstance(c.tag, str)]
     if not shapes:
         raise ReadbackError(f"<{parent.tag}> has no geometry", _line(parent))
@@ -204,15 +236,15 @@ def _geometry(parent: etree._Element) -> Geometry:
 
 
 def _shape(e: etree._Element) -> Shape:
-    mat = e.find("material") if e.tag == "visual" else None
+    mat = _first(e, "material") if e.tag == "visual" else None
     return Shape(e.get("name"), _origin(e), _geometry(e), None if mat is None else mat.get("name"))
 
 
 def _inertial(link: etree._Element) -> Inertial | None:
-    e = link.find("inertial")
+    e = _first(link, "inertial")
     if e is None:
         return None
-    mass, inertia = e.find("mass"), e.find("inertia")
+    mass, inertia = _first(e, "mass"), _first(e, "inertia")
     if mass is None or inertia is None:
         raise ReadbackError("<inertial> needs <mass> and <inertia>", _line(e))
     xx, xy, xz, yy, yz, zz = (_attr(inertia, k) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
@@ -229,8 +261,8 @@ def _name(e: etree._Element) -> str:
 def _link(e: etree._Element) -> Link:
     return Link(
         _name(e),
-        tuple(_shape(v) for v in e.findall("visual")),
-        tuple(_shape(c) for c in e.findall("collision")),
+        tuple(map(_shape, e.iterchildren("visual"))),
+        tuple(map(_shape, e.iterchildren("collision"))),
         _inertial(e),
         _line(e),
     )
@@ -239,8 +271,8 @@ def _link(e: etree._Element) -> Link:
 _TYPES = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"}
 
 
-def _end(e: etree._Element, tag: str) -> str:
-    x = e.find(tag)
+def _end(e: etree._Element, kids: dict[str, etree._Element], tag: str) -> str:
+    x = kids.get(tag)
     link = None if x is None else x.get("link")
     if link is None:
         raise ReadbackError(f"joint {e.get('name')!r} has no <{tag} link>", _line(e))
@@ -251,28 +283,29 @@ def _joint(e: etree._Element) -> Joint:
     name, kind = _name(e), e.get("type", "")
     if kind not in _TYPES:
         raise ReadbackError(f"joint {name!r} has type {kind!r}, not one of {sorted(_TYPES)}", _line(e))
-    axis_e = e.find("axis")
+    kids = _kids(e)  # a joint's children looked up by tag: one pass instead of eight searches
+    axis_e = kids.get("axis")
     axis = (1.0, 0.0, 0.0) if axis_e is None else _vec3(axis_e, "xyz", _ZERO)
-    lim = e.find("limit")
+    lim = kids.get("limit")
     if lim is None and kind in ("revolute", "prismatic"):
         raise ReadbackError(f"{kind} joint {name!r} has no <limit>", _line(e))
     limit = None
     if lim is not None:
         limit = Limit(_attr(lim, "lower", 0.0), _attr(lim, "upper", 0.0), _attr(lim, "effort"), _attr(lim, "velocity"))
-    dyn = e.find("dynamics")
+    dyn = kids.get("dynamics")
     dynamics = None
     if dyn is not None:
         if dyn.get("damping") is None and dyn.get("friction") is None:
             raise ReadbackError(f"<dynamics> of joint {name!r} has neither damping nor friction", _line(dyn))
         dynamics = (_attr(dyn, "damping", 0.0), _attr(dyn, "friction", 0.0))
-    mim = e.find("mimic")
+    mim = kids.get("mimic")
     mimic = None
     if mim is not None:
         leader = mim.get("joint")
         if leader is None:
             raise ReadbackError(f"<mimic> of joint {name!r} has no joint", _line(mim))
         mimic = (leader, _attr(mim, "multiplier", 1.0), _attr(mim, "offset", 0.0))
-    sc = e.find("safety_controller")
+    sc = kids.get("safety_controller")
     safety = None
     if sc is not None:
         safety = (
@@ -282,12 +315,22 @@ def _joint(e: etree._Element) -> Joint:
             _attr(sc, "k_velocity"),
         )
     return Joint(
-        name, kind, _end(e, "parent"), _end(e, "child"), _origin(e), axis, limit, dynamics, mimic, safety, _line(e)
+        name,
+        kind,
+        _end(e, kids, "parent"),
+        _end(e, kids, "child"),
+        _pose(kids.get("origin")),
+        axis,
+        limit,
+        dynamics,
+        mimic,
+        safety,
+        _line(e),
     )
 
 
 def _material(e: etree._Element) -> Material:
-    color, texture = e.find("color"), e.find("texture")
+    color, texture = _first(e, "color"), _first(e, "texture")
     rgba = None if color is None else _numbers(color, "rgba", 4, None)
     return Material(_name(e), rgba, None if texture is None else texture.get("filename"), _line(e))
 
@@ -302,7 +345,7 @@ def read(text: str) -> Robot:
         raise ReadbackError(f"the root element is <{root.tag}>, not <robot>", _line(root))
     return Robot(
         _name(root),
-        tuple(_link(e) for e in root.findall("link")),
-        tuple(_joint(e) for e in root.findall("joint")),
-        tuple(_material(e) for e in root.findall("material")),
+        tuple(map(_link, root.iterchildren("link"))),
+        tuple(map(_joint, root.iterchildren("joint"))),
+        tuple(map(_material, root.iterchildren("material"))),
     )

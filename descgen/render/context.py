@@ -115,13 +115,12 @@ def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]
     from ..frames import edges
 
     es = edges(robot)
-    names: list[str] = []
+    ids: dict[str, str] = {}  # frames in order of first appearance (a dict: 1000 links are 2000 lookups)
     for e in es:
         for n in (e.parent, e.child):
-            if n not in names:
-                names.append(n)
-    ids = {n: f"f{i}" for i, n in enumerate(names)}
-    nodes = [{"id": ids[n], "label": n} for n in names]  # escaped by the template's filter
+            if n not in ids:
+                ids[n] = f"f{len(ids)}"
+    nodes = [{"id": i, "label": n} for n, i in ids.items()]  # escaped by the template's filter
     rows = [
         {
             "parent": e.parent,
@@ -137,6 +136,12 @@ def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]
         for e in es
     ]
     return nodes, rows
+
+
+def _frames(robot: Robot, xacro: bool) -> dict[str, list[dict[str, Any]]]:
+    """frames.md's and frames.dot's graph (the plain context's; the Xacro has no use for it)."""
+    nodes, rows = frame_graph(robot) if not xacro else ([], [])
+    return {"frame_nodes": nodes, "frame_edges": rows}
 
 
 GZ_SIM_PLUGIN = ("gz_ros2_control-system", "gz_ros2_control::GazeboSimROS2ControlPlugin")
@@ -235,8 +240,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "matrix": _matrix_summary(sem.matrix, disabled) if sem is not None and sem.matrix is not None else None,
         "fixed_frame": root,
         "poses": known_pose_tables(robot) if not xacro else [],
-        "frame_nodes": frame_graph(robot)[0] if not xacro else [],
-        "frame_edges": frame_graph(robot)[1] if not xacro else [],
+        **_frames(robot, xacro),
         "view_distance": num(max(2.0, 4 * extent)),
         "view_focal_z": num(0.5),
         "package": {

@@ -15,6 +15,26 @@ from markupsafe import Markup
 def num(x: float | int) -> str:
     """Shortest text that reads back as the same float; ``-0.0`` prints as ``0``;
     whole numbers print without a fraction."""
+    try:
+        text = _NUM.get(x)
+    except TypeError:  # not hashable (a 0-d array): not kept
+        return _num(x)
+    if text is None:
+        text = _num(x)
+        if len(_NUM) >= _NUM_MAX:  # a bound for a long-lived process; a robot repeats far fewer
+            _NUM.clear()
+        _NUM[x] = text
+    return text
+
+
+# num's answers by value: a 1000-link robot writes ~40,000 numbers of a few dozen values.
+# Keys that compare equal (1 and 1.0, 0.0 and -0.0) have the same text; NaN and infinities
+# are refused before they are stored.
+_NUM: dict[float | int, str] = {}
+_NUM_MAX = 65536
+
+
+def _num(x: float | int) -> str:
     v = float(x)
     if not math.isfinite(v):
         raise ValueError(f"cannot write non-finite value {v!r}")
@@ -26,7 +46,20 @@ def num(x: float | int) -> str:
 
 
 def vec(values: Iterable[float]) -> str:
-    return " ".join(num(v) for v in values)
+    if type(values) is not tuple:  # a list or an array: not a key
+        return " ".join(map(num, values))
+    text = _VEC.get(values)
+    if text is None:
+        text = " ".join(map(num, values))
+        if len(_VEC) >= _NUM_MAX:
+            _VEC.clear()
+        _VEC[values] = text
+    return text
+
+
+# vec's answers for the model's tuples (origins, sizes, axes repeat from link to link); equal
+# tuples are equal element by element, so num gives each the same text
+_VEC: dict[tuple[float, ...], str] = {}
 
 
 _DASHES = re.compile(r"-{2,}")
@@ -44,6 +77,8 @@ def visible(text: object) -> str:
     """One line with every control, line-separator or format character as a ``\\n``,
     ``\\xNN`` or ``\\uXXXX`` escape; other text is unchanged."""
     s = str(text)
+    if s.isascii() and s.isprintable():  # no ASCII control character: nothing to escape
+        return s
     if not any(_hidden(ch) for ch in s):
         return s
     return "".join(json.dumps(ch)[1:-1] if ch in "\n\t\r" else _escape(ch) if _hidden(ch) else ch for ch in s)
@@ -124,6 +159,8 @@ def mdcode(text: object) -> str:
     longest run in it (CommonMark), with ``|`` escaped (GFM splits cells before code spans);
     a plain name prints as it always did, in single backticks."""
     s = visible(text)
+    if "`" not in s and "|" not in s:  # a plain name (nearly every one): single backticks
+        return f"`{s}`"
     run = max((len(m) for m in re.findall(r"`+", s)), default=0)
     fence = "`" * (run + 1)
     pad = " " if s.startswith("`") or s.endswith("`") else ""

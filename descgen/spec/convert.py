@@ -30,6 +30,9 @@ DAMPING = {"prismatic": "linear_damping"}
 FRICTION = {"prismatic": "force"}
 
 
+_PLAIN = (str, int, float)  # written values that are their own memo key (a list is not hashable)
+
+
 @dataclass
 class Converter:
     """One build's conversions and the findings they (and the other build steps) make."""
@@ -40,6 +43,9 @@ class Converter:
     joint_types: dict[str, str] = field(default_factory=dict)  # set once every joint is built
     # --package-path: searched for package:// meshes after the spec's package_paths: (inertia from a mesh)
     package_paths: tuple[Path, ...] = ()
+    # (type, text, kind, role) -> SI of the values converted so far: a spec repeats its limits
+    # and offsets ("-90 deg", "100 mm") on every joint; a value that fails is not kept
+    _done: dict[tuple[type, object, str, str | None], float] = field(default_factory=dict, init=False, repr=False)
 
     def where(self, path: Path_) -> Where:
         return self.doc.where(path)
@@ -52,8 +58,14 @@ class Converter:
     ) -> float | None:
         if w is None:
             return default
+        key = (type(w.value), w.value, kind, role) if type(w.value) in _PLAIN else None
+        if key is not None and key in self._done:
+            return self._done[key]
         try:
-            return convert(w, kind, role, self.ranges).si
+            si = convert(w, kind, role, self.ranges).si
+            if key is not None:
+                self._done[key] = si
+            return si
         except Exception as exc:  # PydanticCustomError from convert/check_range
             ctx: dict[str, Any] = getattr(exc, "context", None) or {}
             code = getattr(exc, "type", "UNIT002")

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import inertia as mass_props
-from .. import mesh_paths, meshes
+from .. import mesh_paths
 from .. import model as m
 from ..yamlsource import Path_
 from . import models as s
@@ -70,6 +70,8 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
     problem = f"mesh '{mesh.filename}' is not a readable file beside the spec" if file is None else None
     loaded = None
     if file is not None:
+        from .. import meshes  # numpy, and trimesh for some formats: only for a spec with a mesh inertial
+
         try:
             loaded = meshes.load(file)
         except meshes.MeshError as exc:

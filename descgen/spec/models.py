@@ -5,11 +5,9 @@ Unknown keys are errors (``extra="forbid"``). Every model is frozen. Cross-eleme
 model in ``descgen/audit/rules``, shared with ``descgen audit``.
 """
 
-from __future__ import annotations
-
 import math
 import re
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, Self
 
 from pydantic import (
     AfterValidator,
@@ -214,7 +212,7 @@ class _Round(Base):
     diameter: Size | None = None
 
     @model_validator(mode="after")
-    def _one_size(self) -> _Round:
+    def _one_size(self) -> Self:
         if (self.radius is None) == (self.diameter is None):
             raise error("SPEC004", "give exactly one of radius and diameter", "keep the one you measured")
         return self
@@ -253,7 +251,7 @@ class GeometrySpec(Base):
     mesh: MeshSpec | None = None
 
     @model_validator(mode="after")
-    def _exactly_one(self) -> GeometrySpec:
+    def _exactly_one(self) -> Self:
         given = [k for k in ("box", "cylinder", "sphere", "mesh") if getattr(self, k) is not None]
         if len(given) != 1:
             raise error(
@@ -270,7 +268,7 @@ class MaterialSpec(Base):
     texture: Annotated[OneLine, StringConstraints(max_length=1000)] | None = None
 
     @model_validator(mode="after")
-    def _colour(self) -> MaterialSpec:
+    def _colour(self) -> Self:
         if self.rgba is None and self.texture is None:
             raise error(
                 "SPEC004",
@@ -323,7 +321,7 @@ class InertialSpec(Base):
     source: Source | None = None
 
     @model_validator(mode="after")
-    def _tensor(self) -> InertialSpec:
+    def _tensor(self) -> Self:
         if (self.inertia is None) == (self.from_ is None):
             raise error(
                 "SPEC004",
@@ -512,7 +510,7 @@ class HardwareSpec(Base):
     variants: dict[Literal["gazebo", "real"], HardwareVariantSpec] = {}
 
     @model_validator(mode="after")
-    def _variants_known(self) -> HardwareSpec:
+    def _variants_known(self) -> Self:
         if self.variants and self.plugin != MOCK_PLUGIN:
             raise error(
                 "SPEC080",
@@ -561,7 +559,7 @@ class ControllerSpec(Base):
     source: Source | None = None
 
     @model_validator(mode="after")
-    def _calibrated_known(self) -> ControllerSpec:
+    def _calibrated_known(self) -> Self:
         allowed = CALIBRATABLE.get(self.type, ())
         for key in self.calibrated:
             if key not in allowed:
@@ -668,7 +666,7 @@ class GroupStateSpec(Base):
     joints: dict[ElementName, JointRaw] = {}  # a list for a planar/floating joint
 
     @model_validator(mode="after")
-    def _values(self) -> GroupStateSpec:
+    def _values(self) -> Self:
         if self.pose is None and not self.joints:
             raise error(
                 "SPEC004",

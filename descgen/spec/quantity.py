@@ -122,13 +122,19 @@ def _number(text: str) -> str:
 
 
 def convert(w: Written, kind: str, role: str | None, ranges: dict[str, units.Range]) -> Measured:
+    return _convert(w.value, w.text, w.source, kind, role, ranges)
+
+
+def _convert(
+    value: object, text: str, source: str | None, kind: str, role: str | None, ranges: dict[str, units.Range]
+) -> Measured:
     try:
-        si = units.to_si(w.value, kind)
+        si = units.to_si(value, kind)
     except units.QuantityError as exc:
         raise error(exc.code, exc.message, exc.hint) from None
     if role is not None:
-        check_range(si, w.text, role, ranges)
-    return Measured(si, w.text, kind, w.source)
+        check_range(si, text, role, ranges)
+    return Measured(si, text, kind, source)
 
 
 def _ranges(info: ValidationInfo | None) -> dict[str, units.Range]:
@@ -137,8 +143,29 @@ def _ranges(info: ValidationInfo | None) -> dict[str, units.Range]:
     return ranges if isinstance(ranges, dict) else units.DEFAULT_RANGES
 
 
+MEMO = "quantities"
+"""The validation context's key for a per-spec memo of plain quantity texts already converted:
+(text, kind, role) -> Measured. A spec repeats its texts ("0", "40 mm") thousands of times;
+the result depends only on them and the context's ranges, and a Measured is immutable."""
+
+
+def _memo(info: ValidationInfo | None) -> dict[tuple[str, str, str | None], Measured] | None:
+    ctx = info.context if info is not None else None
+    memo = ctx.get(MEMO) if isinstance(ctx, dict) else None
+    return memo if isinstance(memo, dict) else None
+
+
 def _measured(kind: str, role: str | None) -> Callable[[object, ValidationInfo], Measured]:
     def validate(value: object, info: ValidationInfo) -> Measured:
+        if type(value) is str:  # nearly every value ("300 mm"): what unwrap and convert do, without a Written
+            memo = _memo(info)
+            if memo is None:
+                return _convert(value, value, None, kind, role, _ranges(info))
+            key = (value, kind, role)
+            done = memo.get(key)
+            if done is None:  # a value that fails is not kept: it fails again, with its message
+                done = memo[key] = _convert(value, value, None, kind, role, _ranges(info))
+            return done
         if isinstance(value, Measured):
             return value
         return convert(unwrap(value), kind, role, _ranges(info))

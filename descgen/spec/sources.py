@@ -14,26 +14,40 @@ def _walk_sources(obj: object) -> list[str]:
     return out
 
 
-# a list filled by plain recursion: nested generators cost ~0.3 s on a 1000-link spec
-_LEAVES = (str, int, float, type(None))
+# a list filled by plain recursion: nested generators cost ~0.3 s on a 1000-link spec. Types
+# are told apart by identity first (an isinstance chain per value was most of the walk), and a
+# model's field names are looked up once per class (``model_fields`` goes through pydantic's
+# class property on every access; ``getattr(model, "source", None)`` on a model without that
+# field goes through pydantic's __getattr__ and an exception, ~50 us each).
+_LEAVES = frozenset({str, int, float, bool, type(None)})
+_VALUES = frozenset({Measured, Written})
+_FIELDS: dict[type, tuple[str, ...]] = {}
 
 
 def _collect(obj: object, out: list[str]) -> None:
-    if isinstance(obj, _LEAVES):
+    kind = type(obj)
+    if kind in _LEAVES:
         return
-    if isinstance(obj, Measured | Written):
-        if obj.source:
-            out.append(obj.source)
+    if kind in _VALUES or isinstance(obj, Measured | Written):
+        source = obj.source  # type: ignore[attr-defined]
+        if source:
+            out.append(source)
     elif isinstance(obj, BaseModel):
-        src = getattr(obj, "source", None)
-        if isinstance(src, str):
-            out.append(src)
-        for name in type(obj).model_fields:
-            if name != "source":
-                _collect(getattr(obj, name), out)
-    elif isinstance(obj, list | tuple):
-        for item in obj:
-            _collect(item, out)
+        names = _FIELDS.get(kind)
+        if names is None:
+            names = _FIELDS[kind] = tuple(n for n in kind.__pydantic_fields__ if n != "source")  # type: ignore[attr-defined]
+        if len(names) < len(kind.__pydantic_fields__):  # type: ignore[attr-defined]
+            src = obj.source  # type: ignore[attr-defined]
+            if isinstance(src, str):
+                out.append(src)
+        for name in names:
+            value = getattr(obj, name)
+            if type(value) not in _LEAVES:
+                _collect(value, out)
+    elif kind is list or kind is tuple or isinstance(obj, list | tuple):
+        for item in obj:  # type: ignore[attr-defined]
+            if type(item) not in _LEAVES:
+                _collect(item, out)
     elif isinstance(obj, dict):
         for item in obj.values():
             _collect(item, out)

@@ -145,6 +145,12 @@ def remember(key: str, found: Sequence[Run]) -> None:
     _RUNS[key] = tuple(found)
 
 
+def remembered(key: str) -> tuple[Run, ...] | None:
+    """The collision runs memoised under ``key`` (computed in this process or read back from a
+    committed evidence/sweep.md), or None."""
+    return _RUNS.get(key) if key else None
+
+
 def compute(robot: Robot, settings: Settings = Settings(), progress: Callable[[str], None] | None = None) -> Sweep:
     """The sweep of every joint of ``robot``. InputError for an unknown state."""
     state, values = state_values(robot, settings.state)

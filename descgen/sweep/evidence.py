@@ -10,6 +10,12 @@ comment line with their input hash; ``check`` reads them back from the committed
 the hash matches (:func:`reuse`), as the matrix reuses the committed SRDF. A file edited by
 hand still shows: its content no longer matches its header, and anything rendered from the
 runs is compared with a fresh render.
+
+The table itself (:func:`context`, forward kinematics at every grid step, most of a warm
+``check``'s sweep) is kept in the result cache (descgen/result_cache.py) under the hash of the
+model's values (every field but where it was written), the collision runs, the steps,
+descgen's own source and numpy's version: an unchanged robot is shown from the cache, and the
+file is still rendered and compared with the committed one every time.
 """
 
 from __future__ import annotations
@@ -19,11 +25,23 @@ import re
 from pathlib import Path
 from typing import Any
 
+from .. import evidence_hash, result_cache
 from ..findings import InputError
 from ..model import Robot
 from ..render.formatting import num
 from ..safeio import read_bounded
-from . import DEFAULT_STEPS, Settings, compute, disabled_pairs, limit_of, memo_key, remember, span_text, state_values
+from . import (
+    DEFAULT_STEPS,
+    Settings,
+    compute,
+    disabled_pairs,
+    limit_of,
+    memo_key,
+    remember,
+    remembered,
+    span_text,
+    state_values,
+)
 from .contacts import Run
 from .motion import axis_text, direction, sentence, value_text
 
@@ -31,8 +49,106 @@ PATH = "evidence/sweep.md"
 _DATA = re.compile(r"<!-- sweep input-sha256=([0-9a-f]{64}) runs=(.*) -->")
 
 
+_KIND = "sweep-evidence"
+
+
 def context(robot: Robot) -> dict[str, Any]:
-    """What the template shows (strings already rounded; names escaped by the template)."""
+    """What the template shows (strings already rounded; names escaped by the template): from
+    the result cache when the robot and its collision runs are as when it was stored (module
+    doc), else computed. Only a sweep whose runs are known is kept: without them the table
+    says why (pinocchio missing, a mesh refused), which depends on more than the model."""
+    key = _cache_key(robot)
+    if key is not None:
+        hit = result_cache.get(_KIND, key)
+        if _is_context(hit):
+            return hit  # type: ignore[no-any-return]
+    found = computed(robot)
+    key = key or _cache_key(robot)  # the runs are known now when the sweep computed them
+    if key is not None:
+        result_cache.put(_KIND, key, found)
+    return found
+
+
+def _cache_key(robot: Robot) -> str | None:
+    """The hash of everything :func:`computed` reads, or None when the runs are not memoised
+    yet (or the model holds a value :func:`evidence_hash.model_values` cannot see whole)."""
+    state, values = state_values(robot, None)
+    runs = remembered(memo_key(robot, state, values, DEFAULT_STEPS, disabled_pairs(robot)[0]))
+    if runs is None:
+        return None
+    try:
+        model = evidence_hash.model_values(robot)
+    except TypeError:
+        return None
+    inputs = {
+        "robot": model,
+        "steps": DEFAULT_STEPS,
+        "runs": [[r.joint, r.link1, r.link2, r.first, r.last] for r in runs],
+    }
+    return result_cache.key(_KIND, inputs, ("numpy",))
+
+
+# the context's shape, checked on what the cache gives back (an entry is data, never trusted)
+_TOP = {
+    "state": str,
+    "steps": int,
+    "padding": str,
+    "disabled": int,
+    "disabled_by": str,
+    "checked": bool,
+    "note": str,
+    "collisions": int,
+    "joints": list,
+    "no_range": list,
+    "skipped": list,
+    "unresolved": list,
+    "data": str,
+}
+_JOINT = {
+    "name": str,
+    "type": str,
+    "range": str,
+    "axis": str,
+    "sentence": str,
+    "followers": list,
+    "between": str,
+    "moved": list,
+    "pairs": int,
+    "collisions": list,
+}
+
+
+def _typed(doc: object, shape: dict[str, type]) -> bool:
+    return isinstance(doc, dict) and set(doc) == set(shape) and all(type(doc[k]) is t for k, t in shape.items())
+
+
+def _strings(items: object, keys: tuple[str, ...]) -> bool:
+    """A list of dicts holding exactly ``keys``, each a string."""
+    return isinstance(items, list) and all(
+        isinstance(x, dict) and set(x) == set(keys) and all(isinstance(x[k], str) for k in keys) for x in items
+    )
+
+
+def _is_context(doc: object) -> bool:
+    if not _typed(doc, _TOP):
+        return False
+    assert isinstance(doc, dict)
+    if not all(isinstance(x, str) for key in ("skipped", "unresolved") for x in doc[key]):
+        return False
+    if not _strings(doc["no_range"], ("name", "why")):
+        return False
+    for j in doc["joints"]:
+        if not _typed(j, _JOINT) or not all(isinstance(x, str) for x in j["followers"]):
+            return False
+        if not _strings(j["moved"], ("link", "direction", "tip")):
+            return False
+        if not _strings(j["collisions"], ("link1", "link2", "span", "limit")):
+            return False
+    return True
+
+
+def computed(robot: Robot) -> dict[str, Any]:
+    """:func:`context` computed: the sweep at :data:`DEFAULT_STEPS` steps, rounded for display."""
     sw = compute(robot, Settings(steps=DEFAULT_STEPS))
     joints: list[dict[str, Any]] = []
     for m in sw.motions:

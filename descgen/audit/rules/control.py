@@ -207,8 +207,6 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
     `calibrated: {wheel_radius: {value: "0.0985 m", source: "odometry calibration 2024-05"}}`
     in the spec, or the value in metres in the controllers file.
     """
-    from ...derive import diff_drive_geometry
-
     rc = robot.ros2_control
     if rc is None:
         return
@@ -217,6 +215,8 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
             continue
         if any(unresolved(n) for k in ("left_wheel_names", "right_wheel_names") for n in _list(c.param(k))):
             continue  # the wheels are named by a launch substitution: CTRL052/053 stand for it
+        from ...derive import diff_drive_geometry  # numpy: only for a diff-drive controller
+
         geo = diff_drive_geometry(robot, c)
         for problem in geo.problems:
             yield at(
@@ -231,12 +231,12 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
 
 def _wheel_values(robot: Robot) -> Iterator[Finding]:
     """CTRL006 (unit slip, repeated in a spec) and CTRL051 (beyond tolerance) findings."""
-    from ...derive import diff_drive_geometry
-
     rc = robot.ros2_control
     for c in rc.controllers if rc is not None else ():
         if not c.type.startswith("diff_drive_controller/"):
             continue
+        from ...derive import diff_drive_geometry  # numpy: only for a diff-drive controller
+
         geo = diff_drive_geometry(robot, c)
         for key, derived in (("wheel_separation", geo.wheel_separation), ("wheel_radius", geo.wheel_radius)):
             if derived is not None:

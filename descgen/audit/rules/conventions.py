@@ -5,16 +5,21 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-import numpy as np
-
 from ...findings import Finding
 from ...model import Robot
-from ...transforms import rpy_matrix
+from ...rigid import IDENTITY, Rot, rpy_rot
 from ..registry import at, rule
 
 # body (x forward, y left, z up) -> optical (z forward, x right, y down): columns are the
 # optical axes in body coordinates (reference/conventions.md)
-REP103 = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+REP103: Rot = ((0.0, 0.0, 1.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0))
+
+
+def _allclose(a: Rot, b: Rot, atol: float) -> bool:
+    """``numpy.allclose(a, b, atol=atol)`` on two rotations (its default rtol=1e-5 included)."""
+    return all(
+        abs(x - y) <= atol + 1e-5 * abs(y) for ra, rb in zip(a, b, strict=True) for x, y in zip(ra, rb, strict=True)
+    )
 
 
 def is_mobile_base(robot: Robot) -> bool:
@@ -104,10 +109,10 @@ def optical_frame_not_rotated(robot: Robot) -> Iterator[Finding]:
         j = robot.parent_joint(name)
         if j is None or j.type != "fixed" or (j.parent and "optical" in j.parent.lower()):
             continue
-        r = rpy_matrix(j.origin.rpy)
-        if np.allclose(r, REP103, atol=1e-3):
+        r = rpy_rot(j.origin.rpy)
+        if _allclose(r, REP103, atol=1e-3):
             continue
-        if np.allclose(r, np.eye(3), atol=1e-6):
+        if _allclose(r, IDENTITY, atol=1e-6):
             yield at(
                 "NAME013",
                 j,
@@ -115,7 +120,8 @@ def optical_frame_not_rotated(robot: Robot) -> Iterator[Finding]:
                 "set the joint's rpy to (-pi/2, 0, -pi/2) (REP 103)",
             )
         else:
-            angle = math.degrees(math.acos(max(-1.0, min(1.0, (np.trace(REP103.T @ r) - 1) / 2))))
+            trace = -r[1][0] - r[2][1] + r[0][2]  # trace(REP103^T r): REP103's three non-zero entries
+            angle = math.degrees(math.acos(max(-1.0, min(1.0, (trace - 1) / 2))))
             yield at(
                 "NAME013",
                 j,

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import math
+from collections.abc import Callable, Iterator
 
-import numpy as np
-
-from ...extent import half_trace_by_span, moment_by_shapes, robot_span
+from ... import principal
+from ...extent import bounding_hulls, half_trace_by_span, moment_by_shapes, robot_span, within_shapes
 from ...findings import Finding, Severity
-from ...model import Link, Robot
+from ...model import Inertia, Link, Robot
 from ...physics import moving_links, own_bodies, welded_count
+from ...rigid import Vec, norm, rpy_rot
 from ..registry import at, rule
 
 
@@ -100,12 +101,12 @@ def inertia_not_positive_definite(robot: Robot) -> Iterator[Finding]:
     for lk in robot.links:
         if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
-        eig = np.linalg.eigvalsh(np.array(lk.inertial.inertia.matrix()))
-        if eig.min() <= 1e-15 * max(1.0, float(abs(eig).max())):
+        shown = _verdict(lk.inertial.inertia, _not_positive_definite, _settled_not_pd)
+        if shown is not None:
             yield at(
                 "INER003",
                 lk.inertial,
-                f"link '{lk.name}' inertia has principal moments {_fmt(eig)}: not positive definite",
+                f"link '{lk.name}' inertia has principal moments {shown}: not positive definite",
                 "recompute the tensor (or use from: collision)",
                 severity=_severity(robot, lk, moving),
                 subject=lk.subject,
@@ -123,12 +124,12 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
     for lk in robot.links:
         if not _weighed(lk) or lk.inertial is None or lk.inertial.inertia is None:
             continue
-        eig = np.sort(np.linalg.eigvalsh(np.array(lk.inertial.inertia.matrix())))
-        if eig.min() > 0 and eig.max() > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9):
+        shown = _verdict(lk.inertial.inertia, _breaks_triangle, _settled_triangle)
+        if shown is not None:
             yield at(
                 "INER004",
                 lk.inertial,
-                f"link '{lk.name}' principal moments {_fmt(eig)} break the triangle inequality",
+                f"link '{lk.name}' principal moments {shown} break the triangle inequality",
                 "recompute the tensor; a value may be in the wrong unit",
                 severity=_severity(robot, lk, moving),
                 subject=lk.subject,
@@ -137,6 +138,57 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
 
 def _fmt(values: object) -> str:
     return "[" + ", ".join(f"{float(v):.4g}" for v in values) + "]"  # type: ignore[attr-defined]
+
+
+def _one(v: float) -> str:
+    return f"{float(v):.4g}"
+
+
+def _not_positive_definite(eig: principal.Moments) -> bool:
+    return min(eig) <= 1e-15 * max(1.0, max(abs(v) for v in eig))
+
+
+def _breaks_triangle(eig: principal.Moments) -> bool:
+    return eig[0] > 0 and eig[2] > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9)  # ascending
+
+
+# The two tests above, decided over intervals: True or False when every value numpy may give
+# decides alike, None when not. Sound because each float comparison, sum, product and max
+# is monotone in its arguments, so the ends of the intervals bound every case.
+def _settled_not_pd(b: principal.Bounded) -> bool | None:
+    if b.low(0) > 1e-15 * max(1.0, abs(b.low(0)), abs(b.high(0)), abs(b.low(2)), abs(b.high(2))):
+        return False
+    if b.high(0) <= 1e-15 * max(1.0, b.low(2)):  # max |e| >= e2 >= its low end
+        return True
+    return None
+
+
+def _settled_triangle(b: principal.Bounded) -> bool | None:
+    if b.high(0) <= 0 or b.high(2) <= 1e-12 or b.low(0) + b.low(1) >= b.high(2) * (1 - 1e-9):
+        return False
+    if b.low(0) > 0 and b.low(2) > 1e-12 and b.high(0) + b.high(1) < b.low(2) * (1 - 1e-9):
+        return True
+    return None
+
+
+def _verdict(
+    t: Inertia,
+    test: Callable[[principal.Moments], bool],
+    settled: Callable[[principal.Bounded], bool | None],
+) -> str | None:
+    """The printed principal moments when ``test`` holds for numpy's eigenvalues of ``t``,
+    else None. Plain-float eigenvalues (principal.bounded) answer when their interval
+    settles the test and prints alike; numpy only when it does not (a tensor on the edge)."""
+    b = principal.bounded(t)
+    decided = settled(b) if b is not None else None
+    if decided is False:
+        return None
+    if decided and b is not None:
+        shown = principal.text(b, _one)
+        if shown is not None:
+            return "[" + ", ".join(shown) + "]"
+    eig = principal.moments(t)
+    return _fmt(eig) if test(eig) else None
 
 
 MASSLESS = 1e-6  # kg: a "mass" this small is a frame's placeholder, not a body
@@ -161,7 +213,7 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
             continue
         t = i.inertia
         half_trace = (t.ixx + t.iyy + t.izz) / 2
-        r_min = (3 * i.mass / (4 * np.pi * DENSEST)) ** (1 / 3)
+        r_min = (3 * i.mass / (4 * math.pi * DENSEST)) ** (1 / 3)
         least = 0.6 * i.mass * r_min**2
         if half_trace < least * (1 - 1e-9):
             yield at(
@@ -175,31 +227,34 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
             )
 
 
-def _aabb(robot: Robot, link: str) -> tuple[np.ndarray, np.ndarray] | None:
+def _aabb(robot: Robot, link: str) -> tuple[Vec, Vec] | None:
     """Axis-aligned box around a link's collision primitives, in the link frame."""
     from ...model import Box, Cylinder, Sphere
-    from ...transforms import rpy_matrix
 
     lk = robot.link(link)
     if lk is None or not lk.collisions:
         return None
-    lows, highs = [], []
+    lows: list[Vec] = []
+    highs: list[Vec] = []
     for c in lk.collisions:
         g = c.geometry
         if isinstance(g, Box):
-            half = np.array(g.size) / 2
+            half = (g.size[0] / 2, g.size[1] / 2, g.size[2] / 2)
         elif isinstance(g, Cylinder):
-            half = np.array([g.radius, g.radius, g.length / 2])
+            half = (g.radius, g.radius, g.length / 2)
         elif isinstance(g, Sphere):
-            half = np.array([g.radius] * 3)
+            half = (g.radius, g.radius, g.radius)
         else:
             return None  # a mesh: extent unknown without reading it
-        r = rpy_matrix(c.origin.rpy)
-        extent = np.abs(r) @ half
-        centre = np.array(c.origin.xyz)
-        lows.append(centre - extent)
-        highs.append(centre + extent)
-    return np.min(lows, axis=0), np.max(highs, axis=0)
+        r = rpy_rot(c.origin.rpy)
+        extent = [abs(row[0]) * half[0] + abs(row[1]) * half[1] + abs(row[2]) * half[2] for row in r]
+        centre = c.origin.xyz
+        lows.append((centre[0] - extent[0], centre[1] - extent[1], centre[2] - extent[2]))
+        highs.append((centre[0] + extent[0], centre[1] + extent[1], centre[2] + extent[2]))
+    return (
+        (min(v[0] for v in lows), min(v[1] for v in lows), min(v[2] for v in lows)),
+        (max(v[0] for v in highs), max(v[1] for v in highs), max(v[2] for v in highs)),
+    )
 
 
 @rule("INER005", "com-outside-geometry", "warning")
@@ -222,9 +277,9 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
         if box is None:
             continue
         low, high = box
-        size = float(np.linalg.norm(high - low))
-        com = np.array(i.origin.xyz)
-        outside = float(np.linalg.norm(np.maximum(low - com, 0) + np.maximum(com - high, 0)))
+        size = norm([high[k] - low[k] for k in range(3)])
+        com = i.origin.xyz
+        outside = norm([max(low[k] - com[k], 0.0) + max(com[k] - high[k], 0.0) for k in range(3)])
         if outside > 0.25 * size and outside > 1e-3:
             yield at(
                 "INER005",
@@ -266,7 +321,10 @@ def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
         i = lk.inertial
         if i is None or i.inertia is None or i.mass is None or i.mass <= MASSLESS:
             continue
-        found = moment_by_shapes(lk)
+        hulls = bounding_hulls(lk)
+        if hulls is not None and within_shapes(lk, hulls, GEOMETRY_MARGIN):
+            continue  # a few rim corners settle it: the common case, without all 128 per cylinder
+        found = moment_by_shapes(lk) if hulls is not None else None
         if found is not None:
             if found.ratio <= GEOMETRY_MARGIN:
                 continue

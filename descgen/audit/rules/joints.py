@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-import numpy as np
-
 from ...findings import Finding
 from ...model import ONE_DOF, WITH_AXIS, WITH_LIMITS, Joint, Robot
 from ...naming import mirror_name
 from ...physics import static_load, subtree_loads
+from ...rigid import dot, norm, rotate
+from ...zero_pose import at_zero
 from ..registry import at, rule
 
 
@@ -198,8 +198,6 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     The joint cannot hold its own arm up: on the robot it sags or faults; in simulation it
     falls while the description claims it can lift.
     """
-    from ...kinematics import at_zero
-
     poses = at_zero(robot)
     if not poses:
         return
@@ -237,10 +235,7 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
     ## Why is this bad?
     A copied leg or arm with one axis changed turns the wrong way; nothing else notices.
     """
-    from ...kinematics import at_zero
-
     poses = at_zero(robot)
-    flip = np.diag([1.0, -1.0, 1.0])
     done: set[str] = set()
     for j in robot.joints:
         other_name = mirror_name(j.name)
@@ -252,17 +247,19 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
             continue
         if j.child not in poses or other.child not in poses:
             continue
-        pa, pb = poses[j.child], poses[other.child]
-        scale = max(float(np.linalg.norm(pa[:3, 3])), 1e-3)
-        if np.linalg.norm(flip @ pa[:3, 3] - pb[:3, 3]) > 0.01 * scale:
-            continue  # not placed as mirror images: nothing to compare
+        (ra, pa), (rb, pb) = poses[j.child], poses[other.child]
+        scale = max(norm(pa), 1e-3)
+        if norm((pa[0] - pb[0], -pa[1] - pb[1], pa[2] - pb[2])) > 0.01 * scale:
+            continue  # not placed as mirror images (about the root's x-z plane): nothing to compare
         na, nb = math.hypot(*j.axis), math.hypot(*other.axis)
         if na == 0 or nb == 0:
             continue
-        a = flip @ (pa[:3, :3] @ np.array(j.axis) / na)
-        b = pb[:3, :3] @ np.array(other.axis) / nb
-        if abs(abs(float(np.dot(a, b))) - 1) > 1e-3:
-            angle = math.degrees(math.acos(min(1.0, abs(float(np.dot(a, b))))))
+        a = rotate(ra, j.axis)
+        a = (a[0] / na, -(a[1] / na), a[2] / na)  # mirrored: y flips
+        b = rotate(rb, other.axis)
+        b = (b[0] / nb, b[1] / nb, b[2] / nb)
+        if abs(abs(dot(a, b)) - 1) > 1e-3:
+            angle = math.degrees(math.acos(min(1.0, abs(dot(a, b)))))
             yield at(
                 "JOINT009",
                 other,

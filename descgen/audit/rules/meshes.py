@@ -9,21 +9,20 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-import numpy as np
-
 from ...findings import Finding
-from ...meshes import MeshFacts, corners_in_metres, facts_of_robot, size_in_metres
+from ...meshes import MeshFacts, box_in_metres, facts_of_robot, size_in_metres
 from ...model import Collision, Link, Mesh, Robot, Visual
 from ...physics import PLACEHOLDER_MASS, dims, robot_scale
-from ...transforms import rpy_matrix
+from ...rigid import Vec, frame, norm, placed_box
 from ..registry import at, rule
+
+Box3 = tuple[Vec, Vec]  # (low, high) corners of an axis-aligned box
 
 TOO_LARGE = 30.0  # a mesh this many times the link's other evidence is in the wrong unit
 FLOOR = 1.0  # metres: a mesh smaller than this is never called too large
 WATER = 1000.0  # kg/m^3: the side of a cube of water of the link's mass is one more length
 # Unit slips between CAD and URDF (file unit in metres -> how many times too large);
 # a ratio within 15 % of one of these is named.
-_SIGNS = np.array([[sx, sy, sz] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0) for sz in (-1.0, 1.0)])  # box corners
 _FACTORS = ((1000.0, "millimetres"), (100.0, "centimetres"), (1 / 0.0254, "inches"), (0.001, "metres scaled as mm"))
 
 
@@ -149,20 +148,19 @@ def mesh_in_wrong_unit(robot: Robot) -> Iterator[Finding]:
         )
 
 
-def _box_in_link(shape: Visual | Collision, facts: MeshFacts | None) -> tuple[np.ndarray, np.ndarray] | None:
-    """Axis-aligned box (link frame) around a shape: a mesh's scaled corners or a primitive."""
+def _box_in_link(shape: Visual | Collision, facts: MeshFacts | None) -> Box3 | None:
+    """Axis-aligned box (link frame) around a shape: a mesh's scaled bounding box or a primitive."""
     g = shape.geometry
     if isinstance(g, Mesh):
-        corners = corners_in_metres(facts, g.scale) if facts is not None else None
+        bounds = box_in_metres(facts, g.scale) if facts is not None else None
     elif g is not None and dims(g):
-        corners = _SIGNS * np.array(_half_extents(shape))  # (-1) * h is exactly -h: the same corners
+        h = _half_extents(shape)
+        bounds = (-h[0], -h[1], -h[2]), h
     else:
-        corners = None
-    if corners is None:
+        bounds = None
+    if bounds is None:
         return None
-    r = rpy_matrix(shape.origin.rpy)
-    placed = corners @ r.T + np.asarray(shape.origin.xyz)
-    return placed.min(axis=0), placed.max(axis=0)
+    return placed_box(bounds[0], bounds[1], frame(shape.origin.xyz, shape.origin.rpy))
 
 
 def _half_extents(shape: Visual | Collision) -> tuple[float, float, float]:
@@ -195,8 +193,8 @@ def visual_far_from_collision(robot: Robot) -> Iterator[Finding]:
         col = _union([_box_in_link(s, _facts_of(s, facts)) for s in lk.collisions])
         if vis is None or col is None:
             continue
-        gap = float(np.linalg.norm(np.maximum(0.0, np.maximum(vis[0] - col[1], col[0] - vis[1]))))
-        larger = max(float(np.linalg.norm(vis[1] - vis[0])), float(np.linalg.norm(col[1] - col[0])))
+        gap = norm([max(0.0, vis[0][k] - col[1][k], col[0][k] - vis[1][k]) for k in range(3)])
+        larger = max(norm(_sub(vis[1], vis[0])), norm(_sub(col[1], col[0])))
         if gap > larger and gap > 0.01:
             yield at(
                 "GEOM032",
@@ -213,17 +211,23 @@ def _facts_of(shape: Visual | Collision, facts: dict[str, MeshFacts]) -> MeshFac
     return facts.get(g.filename) if isinstance(g, Mesh) else None
 
 
-def _union(boxes: list[tuple[np.ndarray, np.ndarray] | None]) -> tuple[np.ndarray, np.ndarray] | None:
+def _union(boxes: list[Box3 | None]) -> Box3 | None:
     if not boxes or any(b is None for b in boxes):
         return None  # a shape we cannot place: no judgement
-    lows = np.array([b[0] for b in boxes if b is not None])
-    highs = np.array([b[1] for b in boxes if b is not None])
-    return lows.min(axis=0), highs.max(axis=0)
+    lows = [b[0] for b in boxes if b is not None]
+    highs = [b[1] for b in boxes if b is not None]
+    return (
+        (min(v[0] for v in lows), min(v[1] for v in lows), min(v[2] for v in lows)),
+        (max(v[0] for v in highs), max(v[1] for v in highs), max(v[2] for v in highs)),
+    )
 
 
-def _centre(box: tuple[np.ndarray, np.ndarray]) -> tuple[float, float, float]:
-    c = (box[0] + box[1]) / 2
-    return (float(c[0]), float(c[1]), float(c[2]))
+def _sub(a: Vec, b: Vec) -> Vec:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _centre(box: Box3) -> Vec:
+    return ((box[0][0] + box[1][0]) / 2, (box[0][1] + box[1][1]) / 2, (box[0][2] + box[1][2]) / 2)
 
 
 @rule("GEOM033", "mesh-not-measured", "info")

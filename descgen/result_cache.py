@@ -1,0 +1,161 @@
+"""Results of pure computations kept between runs, keyed by the hash of every input.
+
+``check`` runs on every commit, and most commits change nothing a proof reads: the sandboxed
+Xacro expansions, catkin_pkg's reading of package.xml and the sweep's table would give the
+same result as last time. Each is a pure function of what its key holds:
+
+- the inputs themselves, by content (the files an expansion reads, the arguments, the
+  environment variables the sandbox lets through; the model values the sweep reads);
+- descgen's identity (:func:`descgen.evidence_hash.descgen_identity`: version, a hash of
+  every source file, the Python version), so any edit to descgen computes again;
+- the versions of the libraries that compute it (xacro, catkin_pkg, numpy, ...).
+
+A changed input is a different key, so nothing stale is ever served: the result is computed
+exactly as without the cache. A proof that reads a cached tool output still does its own
+comparison every time; only the tool's work is skipped.
+
+One JSON file per result under ``<cache>/results/<kind>/`` (descgen/cache_dir.py: the user
+cache folder, ``DESCGEN_CACHE_DIR=`` switches caching off, as the test suite does). An entry
+is data (docs/security.md): read with a size bound, its schema, kind and key must match, and
+each user checks the value's shape; anything else is a miss. Writes go through a temporary
+file renamed into place. A folder holding more than :data:`KEEP` entries drops its oldest.
+Nothing here raises: a cache that cannot be read or written only costs time.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import stat
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from . import evidence_hash
+from .cache_dir import cache_root
+
+SCHEMA = 1  # bump when an entry's layout changes
+MAX_ENTRY_BYTES = 64 * 1024 * 1024  # a 1000-link expansion is a few MB
+KEEP = 128  # entries per kind: a few robots' worth of recent edits
+KEEP_BYTES = 256 * 1024 * 1024  # and at most this much per kind (1000-link expansions are MBs each)
+_KEY = re.compile(r"[0-9a-f]{64}")
+_KIND = re.compile(r"[a-z][a-z0-9-]{0,40}")
+
+
+def key(kind: str, inputs: object, tools: tuple[str, ...] = ()) -> str:
+    """The hash of ``inputs`` (JSON-able), descgen's identity and the ``tools``' versions."""
+    return evidence_hash.digest(
+        {
+            "schema": SCHEMA,
+            "kind": kind,
+            **evidence_hash.descgen_identity(),
+            "tools": evidence_hash.versions(*tools),
+            "inputs": inputs,
+        }
+    )
+
+
+def _folder(kind: str) -> Path | None:
+    root = cache_root()
+    return None if root is None or not _KIND.fullmatch(kind) else root / "results" / kind
+
+
+def get(kind: str, k: str) -> Any:
+    """The value stored for key ``k``, or None on a miss (or an entry not as :func:`put` wrote it)."""
+    folder = _folder(kind)
+    if folder is None or not _KEY.fullmatch(k):
+        return None
+    raw = _read_at_most(folder / f"{k}.json", MAX_ENTRY_BYTES)
+    if raw is None:
+        return None
+    try:
+        doc = json.loads(raw, parse_constant=_no_constant)
+    except (ValueError, RecursionError):  # bad JSON, NaN/Infinity, bad UTF-8
+        return None
+    if not isinstance(doc, dict) or doc.get("schema") != SCHEMA or doc.get("kind") != kind or doc.get("key") != k:
+        return None
+    return doc.get("value")
+
+
+def put(kind: str, k: str, value: object) -> None:
+    """Store ``value`` (JSON-able) under key ``k``; silently nothing when caching is off or fails."""
+    folder = _folder(kind)
+    if folder is None or not _KEY.fullmatch(k):
+        return
+    try:
+        text = json.dumps(
+            {"schema": SCHEMA, "kind": kind, "key": k, "value": value}, allow_nan=False, separators=(",", ":")
+        )
+    except (TypeError, ValueError):
+        return
+    if len(text.encode("utf-8")) > MAX_ENTRY_BYTES:
+        return
+    _write_atomic(folder / f"{k}.json", text)
+    _prune(folder)
+
+
+def _no_constant(name: str) -> None:
+    raise ValueError(f"{name} is not a number descgen writes")
+
+
+def _read_at_most(path: Path, limit: int) -> bytes | None:
+    """At most ``limit`` bytes of ``path`` without blocking on a FIFO; None when it cannot be
+    opened, is no regular file, or holds more."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except (OSError, ValueError):
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
+    data = b"".join(chunks)
+    return None if len(data) > limit else data
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """``text`` to ``path`` through a temporary file and a rename: a concurrent reader sees the
+    old entry or the new one, never half of one."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as out:
+                out.write(text)
+            os.replace(tmp, path)
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except (OSError, ValueError):
+        return
+
+
+def _prune(folder: Path) -> None:
+    """Keep the newest entries, at most :data:`KEEP` of them and :data:`KEEP_BYTES` in all (only
+    after a write, so a read never lists the folder)."""
+    try:
+        entries = [
+            (st.st_mtime_ns, st.st_size, e.path)
+            for e in os.scandir(folder)
+            if e.name.endswith(".json") and e.is_file(follow_symlinks=False)
+            for st in (e.stat(follow_symlinks=False),)
+        ]
+        entries.sort(reverse=True)  # newest first
+        kept = 0
+        for i, (_, size, path) in enumerate(entries):
+            kept += size
+            if i >= KEEP or kept > KEEP_BYTES:
+                os.unlink(path)
+    except OSError:
+        return

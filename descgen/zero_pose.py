@@ -1,0 +1,73 @@
+"""Forward kinematics in plain floats (descgen/rigid.py frames), for the audit rules.
+
+The same kinematics as :mod:`descgen.kinematics` (a joint's frame is ``origin * motion(q)``,
+mimic joints follow their leaders, the axis is normalised), without numpy: the audit poses
+every robot at zero once and reads a few thousand 3-vectors from it, where numpy's import
+(~60 ms) and per-call cost on 4x4 matrices are most of the work. tests/test_zero_pose.py
+holds the frames to :func:`descgen.kinematics.forward`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from . import mimic
+from .model import ROTATING, Joint, Robot
+from .rigid import IDENTITY, ORIGIN, Frame, axis_angle_rot, compose, frame, norm
+
+
+def motion(j: Joint, q: float) -> Frame:
+    """The joint's own motion by ``q``: a turn about its axis, or a slide along it."""
+    if q == 0 or j.axis is None:
+        return ORIGIN
+    n = norm(j.axis)
+    if n == 0:
+        return ORIGIN
+    if j.type in ROTATING:
+        return axis_angle_rot(j.axis, q), (0.0, 0.0, 0.0)
+    if j.type == "prismatic":
+        return IDENTITY, (q * j.axis[0] / n, q * j.axis[1] / n, q * j.axis[2] / n)
+    return ORIGIN
+
+
+def joint_frame(j: Joint, q: float = 0.0) -> Frame:
+    """Pose of the child link frame in the parent link frame."""
+    placed = frame(j.origin.xyz, j.origin.rpy)
+    moved = motion(j, q)
+    return placed if moved is ORIGIN else compose(placed, moved)
+
+
+def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Frame]:
+    """Pose of every link reachable from the root, in the root frame (joints not in ``q`` at
+    zero; a mimic joint always set from its leader), as :func:`descgen.kinematics.forward`."""
+    values = mimic.resolve(robot, q or {})
+    root = robot.root()
+    if root is None:
+        return {}
+    poses: dict[str, Frame] = {root: ORIGIN}
+    todo = [root]
+    while todo:
+        parent = todo.pop()
+        for j in robot.child_joints(parent):
+            if j.child is None or j.child in poses:
+                continue
+            poses[j.child] = compose(poses[parent], joint_frame(j, values.get(j.name, 0.0)))
+            todo.append(j.child)
+    return poses
+
+
+_AT_ZERO: list[tuple[Robot, dict[str, Frame]]] = []  # the zero poses of the last few robots
+_AT_ZERO_KEPT = 4
+
+
+def at_zero(robot: Robot) -> dict[str, Frame]:
+    """``forward(robot)``, computed once per robot object for the rules that all need it
+    (frames are tuples, so no caller can change them; do not add to the dict). Keyed by
+    identity, as Robot is immutable."""
+    for seen, poses in _AT_ZERO:
+        if seen is robot:
+            return poses
+    poses = forward(robot)
+    _AT_ZERO.insert(0, (robot, poses))
+    del _AT_ZERO[_AT_ZERO_KEPT:]
+    return poses
