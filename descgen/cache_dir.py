@@ -8,6 +8,8 @@ time; each user validates what it reads back (docs/security.md)."""
 from __future__ import annotations
 
 import os
+import stat
+import tempfile
 from pathlib import Path
 
 CACHE_ENV = "DESCGEN_CACHE_DIR"
@@ -37,3 +39,47 @@ def cache_folder(name: str) -> Path | None:
     except OSError:
         return None
     return folder
+
+
+def read_at_most(path: Path, limit: int) -> bytes | None:
+    """At most ``limit`` bytes of the cache file ``path`` without blocking on a FIFO; None when
+    it cannot be opened, is no regular file, or holds more (a cache entry is data: a miss, never
+    an error)."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except (OSError, ValueError):
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
+    data = b"".join(chunks)
+    return None if len(data) > limit else data
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """``text`` to the cache file ``path`` through a temporary file and a rename: a concurrent
+    reader sees the old entry or the new one, never half of one. Any failure is a miss later,
+    never an error now."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as out:
+                out.write(text)
+            os.replace(tmp, path)
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except (OSError, ValueError):
+        return

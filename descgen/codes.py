@@ -14,10 +14,10 @@ its entry, marked retired). A code registered twice fails at import time, here o
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
 from typing import Literal
 
 from .findings import Severity
+from .record import record
 
 SeverityOrVaries = Severity | Literal["varies"]
 
@@ -36,7 +36,7 @@ GROUPS: dict[str, str] = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class Code:
     """A finding code that is not an audit rule."""
 
@@ -48,7 +48,7 @@ class Code:
     rationale: str  # why it matters and what to do
 
 
-@dataclass(frozen=True)
+@record
 class Entry:
     """What the catalogue knows about one code, rule or not."""
 
@@ -65,6 +65,7 @@ class Entry:
 
 
 CODES: dict[str, Code] = {}
+NAMES: set[str] = set()  # the names in CODES: a duplicate is found without scanning CODES
 
 
 def register(*codes: Code) -> None:
@@ -72,13 +73,14 @@ def register(*codes: Code) -> None:
     for c in codes:
         if c.code in CODES:
             raise ValueError(f"duplicate finding code {c.code}")
-        if any(other.name == c.name for other in CODES.values()):
+        if c.name in NAMES:
             raise ValueError(f"duplicate code name {c.name} ({c.code})")
         if c.group not in GROUPS or c.group == "rule":
             raise ValueError(f"code {c.code}: unknown group {c.group!r}")
         if not c.summary.strip() or not c.rationale.strip():
             raise ValueError(f"code {c.code} needs a summary and a rationale")
         CODES[c.code] = c
+        NAMES.add(c.name)
 
 
 def _doc(c: Code) -> str:

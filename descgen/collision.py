@@ -30,12 +30,13 @@ import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from .findings import Finding, InputError, Where
 from .model import CollisionMatrix, DisabledPair, MatrixSettings, Robot
+
+if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses the committed
+    import numpy as np  # matrix and must not pay numpy's import (~60 ms) for it
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
 ALGORITHM = "descgen-collision-1"
@@ -201,6 +202,8 @@ def load_scene(robot: Robot, urdf: str, meshes: Mapping[str, bytes], package: st
 
 def configuration(scene: _Scene, values: Mapping[str, float]) -> np.ndarray:
     """pinocchio's q for joint values by name (others at zero; continuous joints as cos, sin)."""
+    import numpy as np
+
     q = np.array(scene.pin.neutral(scene.model))
     for jid in range(1, scene.model.njoints):
         name = scene.model.names[jid]
@@ -216,6 +219,8 @@ def configuration(scene: _Scene, values: Mapping[str, float]) -> np.ndarray:
 
 def random_configurations(scene: _Scene, samples: int, seed: int) -> np.ndarray:
     """``samples`` rows of q, each joint uniform within its limits (continuous: full turn)."""
+    import numpy as np
+
     rng = np.random.default_rng(seed)
     model = scene.model
     qs = np.tile(np.array(scene.pin.neutral(model)), (samples, 1))

@@ -6,10 +6,10 @@ Templates only format; everything computed for an output is computed here and te
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .model import WITH_LIMITS, Controller, Cylinder, Interface, Joint, Robot, Sphere
+from .record import record
 
 if TYPE_CHECKING:
     from .transforms import Mat
@@ -37,7 +37,7 @@ def _wheel_names(c: Controller, key: str) -> list[str]:
     return [str(x) for x in v] if isinstance(v, list | tuple) else []
 
 
-@dataclass(frozen=True)
+@record
 class DiffDriveGeometry:
     wheel_separation: float | None
     wheel_radius: float | None

@@ -22,12 +22,12 @@ import re
 import tempfile
 from collections.abc import Callable, Sequence
 from contextlib import redirect_stderr, redirect_stdout
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from . import cli_format, evidence_hash, pose_images, report
 from .findings import Finding, InputError, Where
+from .record import record
 
 PAGE = "evidence/README.md"
 _VOLATILE = re.compile(r"<!-- volatile -->.*?<!-- /volatile -->", re.S)
@@ -41,7 +41,7 @@ _TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Ji
 TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
 
 
-@dataclass(frozen=True)
+@record
 class FieldFault:
     """A field-story mistake planted in a copy of the spec text, and the code that must catch it."""
 
@@ -90,7 +90,7 @@ FIELD_FAULTS = (
 )
 
 
-@dataclass(frozen=True)
+@record
 class Caught:
     fault: FieldFault
     planted: bool

@@ -11,10 +11,10 @@ without reading the file, so a link with a mesh has none here).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from . import principal
 from .model import Box, Collision, Cylinder, Link, Robot, Sphere, Visual
+from .record import record
 from .rigid import Frame, Vec, apply, compose, dot, frame, norm, rotate, rpy_rot
 
 _SIDES = 64  # a cylinder's rims become 64-gons drawn around the circle, so they contain it
@@ -25,7 +25,7 @@ _CUBE = tuple((sx, sy, sz) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0) for sz in
 _SAMPLED = range(0, _SIDES, 8)  # rim corners a quick lower bound on a reach looks at
 
 
-@dataclass(frozen=True)
+@record
 class Hull:
     """Points whose convex hull, grown by ``pad`` in every direction, contains a shape, in
     the frame the hull was built in: a box's 8 corners, a sphere's centre (``pad`` its
@@ -180,7 +180,7 @@ def _span(robot: Robot) -> float:
     return norm((hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]))
 
 
-@dataclass(frozen=True)
+@record
 class MomentBound:
     """A moment of inertia (kg*m^2) and the most the link's mass can give at ``reach`` (m)."""
 

@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal
+
+from .record import record
 
 Severity = Literal["error", "warning", "info"]
 SEVERITIES: tuple[Severity, ...] = ("error", "warning", "info")
 
 
-@dataclass(frozen=True)
+@record
 class Where:
     """Where an element or value came from: a file and a 1-based line and column (0 = unknown).
 
@@ -32,7 +34,7 @@ class Where:
         return self.file
 
 
-@dataclass(frozen=True)
+@record
 class Finding:
     code: str
     severity: Severity

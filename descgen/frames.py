@@ -17,16 +17,15 @@ Facts encoded (reference/robot_state_publisher.md, ros2_control.md, conventions.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from . import mimic
 from .findings import Where
 from .model import NOWHERE, ONE_DOF, Robot
+from .record import record
 
 RSP = "robot_state_publisher"
 
 
-@dataclass(frozen=True)
+@record
 class Edge:
     parent: str
     child: str

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from . import rigid
 from .model import Box, Cylinder, Geometry, Inertia, Pose, Sphere, Vec3
 
 if TYPE_CHECKING:
@@ -61,26 +62,12 @@ def principal_moments(g: Geometry, mass: float) -> Vec3 | None:
     return None
 
 
-def rotation(rpy: Vec3) -> Rows:
-    """URDF's fixed-axis roll-pitch-yaw rotation, Rz(yaw)·Ry(pitch)·Rx(roll), as rows; the
-    same products as :func:`descgen.transforms.rpy_matrix`, without numpy."""
-    r, p, y = rpy
-    cr, sr = math.cos(r), math.sin(r)
-    cp, sp = math.cos(p), math.sin(p)
-    cy, sy = math.cos(y), math.sin(y)
-    return (
-        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-        (-sp, cp * sr, cp * cr),
-    )
-
-
 def in_link_frame(g: Geometry, mass: float, origin: Pose) -> Inertia | None:
     """The primitive's centroidal tensor rotated into link-frame axes: R·diag(a, b, c)·Rᵀ."""
     principal = principal_moments(g, mass)
     if principal is None:
         return None
-    r = rotation(origin.rpy)
+    r = rigid.rpy_rot(origin.rpy)
     # (R·D) first, then ·Rᵀ, each sum left to right: R·D scales R's columns
     rd = [(row[0] * principal[0], row[1] * principal[1], row[2] * principal[2]) for row in r]
     t = [[rd[i][0] * r[j][0] + rd[i][1] * r[j][1] + rd[i][2] * r[j][2] for j in range(3)] for i in range(3)]

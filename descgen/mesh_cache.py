@@ -35,12 +35,11 @@ import math
 import os
 import re
 import sys
-import tempfile
 import threading
 from pathlib import Path
 from typing import Any
 
-from .cache_dir import CACHE_ENV, cache_root
+from .cache_dir import CACHE_ENV, cache_root, read_at_most, write_atomic
 from .meshes import MAX_TRIANGLES, MeshFacts
 from .safeio import MIB
 
@@ -155,7 +154,7 @@ def put(key: str, kind: str, facts: MeshFacts) -> None:
         text = json.dumps(_doc(key, kind, facts), allow_nan=False, separators=(",", ":"))
     except ValueError:
         return
-    _write_atomic(_entry(root, key), text)
+    write_atomic(_entry(root, key), text)
 
 
 def _doc(key: str, kind: str, f: MeshFacts) -> dict[str, Any]:
@@ -318,7 +317,7 @@ def save_index() -> None:
         rows = [[p, *stat, key, doc] for p, (stat, key, doc) in merged.items()]
         text = json.dumps({"schema": SCHEMA, "entries": rows}, allow_nan=False, separators=(",", ":"))
         if len(text) <= MAX_INDEX_BYTES:
-            _write_atomic(root / INDEX, text)
+            write_atomic(root / INDEX, text)
 
 
 def forget() -> None:
@@ -331,7 +330,7 @@ def forget() -> None:
 def _read_index(root: Path) -> dict[str, Row]:
     """The index in ``root``: every entry that is exactly what save_index() writes; nothing
     when the file is missing, too large, not JSON or not the expected shape."""
-    raw = _read_at_most(root / INDEX, MAX_INDEX_BYTES)
+    raw = read_at_most(root / INDEX, MAX_INDEX_BYTES)
     if raw is None:
         return {}
     try:
@@ -361,43 +360,3 @@ def _valid_entry(path: Any, stat: Any, key: Any) -> bool:
         return False
     size, mtime, ino, ctime = stat
     return bool(0 <= size < _INT64 and 0 <= ino < _INT64 and -_INT64 <= mtime < _INT64 and -_INT64 <= ctime < _INT64)
-
-
-def _read_at_most(path: Path, limit: int) -> bytes | None:
-    """At most ``limit`` bytes of ``path`` without blocking (a FIFO reads as b""); None when
-    it cannot be opened or holds more."""
-    try:
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
-    except (OSError, ValueError):
-        return None
-    try:
-        chunks, size = [], 0
-        while size <= limit:
-            chunk = os.read(fd, limit + 1 - size)
-            if not chunk:
-                break
-            chunks.append(chunk)
-            size += len(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(fd)
-    data = b"".join(chunks)
-    return None if len(data) > limit else data
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    """``text`` to ``path`` through a temporary file and a rename: a concurrent reader sees the
-    old file or the new one. Any failure is a cache miss later, never an error now."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as out:
-                out.write(text)
-            os.replace(tmp, path)
-        except BaseException:
-            os.unlink(tmp)
-            raise
-    except (OSError, ValueError):
-        return

@@ -22,13 +22,14 @@ import posixpath
 import re
 import stat
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from .findings import Finding, Where
 from .model import Collision, Link, Mesh, MeshState, Robot, Visual
 from .packages import find_package
+from .record import record
 from .safeio import MIB
 
 MAX_MESH_BYTES = 64 * MIB  # the largest meshes of real robots are a few MB; a CAD dump may be tens
@@ -36,7 +37,7 @@ PACKAGE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]*")  # what $(find) accepts 
 MESH_FOLDER = "meshes"
 
 
-@dataclass(frozen=True)
+@record
 class Resolved:
     """What one mesh reference points at. ``path`` is set when the file exists (state ok)."""
 
@@ -254,7 +255,7 @@ def _mesh_refs(spec: Any) -> Iterator[tuple[tuple[str | int, ...], str]]:
                     yield (*path, kind, k, "geometry", "mesh", "filename"), mesh.filename
 
 
-@dataclass(frozen=True)
+@record
 class _Found:
     model_name: str
     path: Path

@@ -25,12 +25,12 @@ import threading
 import time
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .findings import InputError
 from .model import Robot, Vec3
+from .record import record
 from .safeio import MIB, read_bounded
 
 if TYPE_CHECKING:  # numpy only where a mesh is parsed: a warm audit answers from the cache without it
@@ -43,7 +43,7 @@ _UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([^\"']+)[\"']", re.IGNOREC
 _DTD = re.compile(rb"<!(DOCTYPE|ENTITY)", re.IGNORECASE)
 
 
-@dataclass(frozen=True)
+@record
 class MeshFacts:
     """What was measured in a mesh file, in the file's own units; ``problem`` says why it
     could not be measured (then the rest is empty)."""
@@ -62,7 +62,7 @@ class MeshError(Exception):
     """A mesh that cannot be measured; ``str()`` says why, in one line."""
 
 
-@dataclass(frozen=True)
+@record
 class Loaded:
     """A mesh read from its file: vertices (file units) and triangles, plus its facts."""
 

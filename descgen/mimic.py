@@ -18,12 +18,12 @@ from __future__ import annotations
 import functools
 import weakref
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 from .model import ONE_DOF, Joint, Robot
+from .record import record
 
 
-@dataclass(frozen=True)
+@record
 class Relation:
     """``q_follower = multiplier * q_leader + offset``, with ``leader`` a driving joint."""
 
@@ -37,7 +37,7 @@ class Relation:
         return self.multiplier * leader_value + self.offset
 
 
-@dataclass(frozen=True)
+@record
 class Problem:
     """A follower whose chain does not reach a driving joint."""
 
@@ -77,7 +77,7 @@ def _walk(
     return chain, Relation(cur, cur, 1.0, 0.0, cur)  # the driving joint follows itself
 
 
-@dataclass(frozen=True)
+@record
 class Mimics:
     """Every follower's relation to its driving joint, and the followers that have none."""
 

@@ -11,11 +11,11 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass
 from typing import Literal
 
 from .findings import Where
 from .moveit_model import MoveItConfig
+from .record import record
 
 Vec3 = tuple[float, float, float]
 NOWHERE = Where("<unknown>")
@@ -35,29 +35,29 @@ MULTI_DOF = ("floating", "planar")  # joints (virtual ones too) with more than o
 MeshState = Literal["ok", "missing", "escapes", "unresolved"]
 
 
-@dataclass(frozen=True)
+@record
 class Pose:
     xyz: Vec3 = (0.0, 0.0, 0.0)
     rpy: Vec3 = (0.0, 0.0, 0.0)
 
 
-@dataclass(frozen=True)
+@record
 class Box:
     size: Vec3
 
 
-@dataclass(frozen=True)
+@record
 class Cylinder:
     radius: float
     length: float
 
 
-@dataclass(frozen=True)
+@record
 class Sphere:
     radius: float
 
 
-@dataclass(frozen=True)
+@record
 class Mesh:
     filename: str
     scale: Vec3 = (1.0, 1.0, 1.0)
@@ -70,7 +70,7 @@ class Mesh:
 Geometry = Box | Cylinder | Sphere | Mesh
 
 
-@dataclass(frozen=True)
+@record
 class Material:
     name: str
     rgba: tuple[float, float, float, float] | None = None
@@ -78,7 +78,7 @@ class Material:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Visual:
     geometry: Geometry | None
     origin: Pose = Pose()
@@ -87,7 +87,7 @@ class Visual:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Collision:
     geometry: Geometry | None
     origin: Pose = Pose()
@@ -95,7 +95,7 @@ class Collision:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Inertia:
     ixx: float
     ixy: float
@@ -112,7 +112,7 @@ class Inertia:
         )
 
 
-@dataclass(frozen=True)
+@record
 class Inertial:
     mass: float | None
     origin: Pose = Pose()
@@ -120,7 +120,7 @@ class Inertial:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Link:
     name: str
     visuals: tuple[Visual, ...] = ()
@@ -139,7 +139,7 @@ class Link:
         return (*self.visuals, *self.collisions)
 
 
-@dataclass(frozen=True)
+@record
 class Limit:
     lower: float | None = None
     upper: float | None = None
@@ -150,13 +150,13 @@ class Limit:
     acceleration: float | None = None
 
 
-@dataclass(frozen=True)
+@record
 class Dynamics:
     damping: float = 0.0
     friction: float = 0.0
 
 
-@dataclass(frozen=True)
+@record
 class Mimic:
     joint: str
     multiplier: float = 1.0
@@ -164,7 +164,7 @@ class Mimic:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class SafetyController:
     k_velocity: float
     k_position: float = 0.0
@@ -172,7 +172,7 @@ class SafetyController:
     soft_upper_limit: float = 0.0
 
 
-@dataclass(frozen=True)
+@record
 class Joint:
     name: str
     type: str
@@ -217,7 +217,7 @@ class Joint:
         return f"{value:.6g} rad ({math.degrees(value):.6g} deg)"
 
 
-@dataclass(frozen=True)
+@record
 class Sensor:
     """A sensor frame: ``link`` on a fixed joint; cameras also get ``optical_frame``."""
 
@@ -230,7 +230,7 @@ class Sensor:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Interface:
     name: str
     min: float | None = None
@@ -239,7 +239,7 @@ class Interface:
     data_type: str | None = None  # ros2_control's data_type attribute; None: not written (double)
 
 
-@dataclass(frozen=True)
+@record
 class ControlJoint:
     name: str
     command: tuple[Interface, ...] = ()
@@ -251,7 +251,7 @@ class ControlJoint:
     block: str = ""  # name of the <ros2_control> block holding the joint
 
 
-@dataclass(frozen=True)
+@record
 class ControlSensor:
     """A ros2_control ``<sensor>``: state interfaces only, not checked against the URDF."""
 
@@ -263,7 +263,7 @@ class ControlSensor:
     block: str = ""  # name of the <ros2_control> block holding the sensor
 
 
-@dataclass(frozen=True)
+@record
 class ControlGpio:
     """A ros2_control ``<gpio>``: command and state interfaces, not checked against the URDF."""
 
@@ -274,7 +274,7 @@ class ControlGpio:
     block: str = ""  # name of the <ros2_control> block holding the gpio
 
 
-@dataclass(frozen=True)
+@record
 class HardwareVariant:
     """One value of the generated Xacro's ``hardware`` argument: the plugin and parameters of
     the ``<hardware>`` element when the description is expanded with ``hardware:=<name>``."""
@@ -285,7 +285,7 @@ class HardwareVariant:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class HardwareBlock:
     """One ``<ros2_control>`` block's hardware (a robot may have several, one per bus)."""
 
@@ -297,7 +297,7 @@ class HardwareBlock:
     variants: tuple[HardwareVariant, ...] = ()  # as Ros2Control.variants, for this block
 
 
-@dataclass(frozen=True)
+@record
 class Calibrated:
     """A controller parameter measured on the robot (e.g. diff drive wheel_separation),
     checked against the value the URDF gives within ``tolerance`` (SI)."""
@@ -309,7 +309,7 @@ class Calibrated:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Controller:
     name: str
     type: str
@@ -321,7 +321,7 @@ class Controller:
         return dict(self.params).get(key, default)
 
 
-@dataclass(frozen=True)
+@record
 class Ros2Control:
     name: str
     type: str = "system"
@@ -346,7 +346,7 @@ class Ros2Control:
         return self.blocks or (first,)
 
 
-@dataclass(frozen=True)
+@record
 class Group:
     name: str
     links: tuple[str, ...] = ()
@@ -356,7 +356,7 @@ class Group:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class GroupState:
     name: str
     group: str
@@ -366,7 +366,7 @@ class GroupState:
     multi: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class EndEffector:
     name: str
     group: str
@@ -375,7 +375,7 @@ class EndEffector:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class VirtualJoint:
     name: str
     type: str
@@ -384,7 +384,7 @@ class VirtualJoint:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class DisabledPair:
     link1: str
     link2: str
@@ -392,7 +392,7 @@ class DisabledPair:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class MatrixSettings:
     """How the self-collision matrix is sampled (``semantic.collision_matrix``)."""
 
@@ -404,7 +404,7 @@ class MatrixSettings:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class CollisionMatrix:
     """The computed matrix (descgen/collision.py): what generate writes into the SRDF."""
 
@@ -416,7 +416,7 @@ class CollisionMatrix:
     state: str  # the group state the Default test used ("" = all joints at zero)
 
 
-@dataclass(frozen=True)
+@record
 class Semantic:
     groups: tuple[Group, ...] = ()
     states: tuple[GroupState, ...] = ()
@@ -430,7 +430,7 @@ class Semantic:
     matrix: CollisionMatrix | None = None
 
 
-@dataclass(frozen=True)
+@record
 class FrameMeasurement:
     frame: str
     xyz: Vec3
@@ -440,7 +440,7 @@ class FrameMeasurement:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class KnownPose:
     name: str
     joints: tuple[tuple[str, float], ...] = ()  # values not listed are zero
@@ -451,7 +451,7 @@ class KnownPose:
     multi: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class ExternalFrame:
     parent: str
     child: str
@@ -464,7 +464,7 @@ class ExternalFrame:
         return f"frame:{self.child}"
 
 
-@dataclass(frozen=True)
+@record
 class JointStateSource:
     node: str
     kind: str = "measured"  # measured | desired
@@ -472,7 +472,7 @@ class JointStateSource:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class PackageInfo:
     version: str = "0.1.0"
     maintainer: str = "descgen user"
@@ -481,7 +481,7 @@ class PackageInfo:
     name: str | None = None  # the spec's package.name; None: <robot>_description (mesh_paths.package_name)
 
 
-@dataclass(frozen=True)
+@record
 class Kinematics:
     """One planning group's IK settings (MoveIt's kinematics.yaml)."""
 
@@ -491,7 +491,7 @@ class Kinematics:
     timeout: float  # s
 
 
-@dataclass(frozen=True)
+@record
 class MoveItSettings:
     """What a team chooses for its MoveIt config package (spec ``moveit:``, SI); what the
     package derives from the rest of the robot is computed in descgen/moveit/."""
@@ -508,7 +508,7 @@ class MoveItSettings:
     where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class Robot:
     name: str
     links: tuple[Link, ...] = ()

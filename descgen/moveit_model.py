@@ -8,9 +8,8 @@ double is the exception: it is kept, since that is what the user meant, and repo
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from .findings import Where
+from .record import record
 
 NOWHERE = Where("<unknown>")
 
@@ -18,7 +17,7 @@ NOWHERE = Where("<unknown>")
 CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand", "ParallelGripperCommand")
 
 
-@dataclass(frozen=True)
+@record
 class TypeProblem:
     """A value whose YAML type is not the ROS parameter type MoveIt declares for it."""
 
@@ -29,7 +28,7 @@ class TypeProblem:
     where: Where
 
 
-@dataclass(frozen=True)
+@record
 class JointLimits:
     """One ``joint_limits.<joint>`` entry; None: the key is absent (or of the wrong type)."""
 
@@ -48,7 +47,7 @@ class JointLimits:
         return dict(self.marks).get(key, self.where)
 
 
-@dataclass(frozen=True)
+@record
 class MoveItController:
     """One controller of ``moveit_simple_controller_manager``."""
 
@@ -70,7 +69,7 @@ class MoveItController:
         return dict(self.marks).get(key, self.where)
 
 
-@dataclass(frozen=True)
+@record
 class KinematicsGroup:
     group: str
     where: Where  # the group's key
@@ -78,14 +77,14 @@ class KinematicsGroup:
     solver_where: Where = NOWHERE
 
 
-@dataclass(frozen=True)
+@record
 class InitialPosition:
     joint: str
     value: float | None  # None: not a number (a TypeProblem says so)
     where: Where
 
 
-@dataclass(frozen=True)
+@record
 class MoveItConfig:
     """The files of one MoveIt config package; a tuple is None when its file is absent."""
 

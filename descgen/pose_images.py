@@ -12,15 +12,18 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
-from . import kinematics
+from . import zero_pose
 from .findings import Finding, Where
 from .model import KnownPose, Robot
+from .rigid import ORIGIN, apply
+
+if TYPE_CHECKING:  # numpy only draws (with matplotlib): check rebuilds the record in plain floats
+    import numpy as np
 
 FOLDER = "evidence/poses"
 SIDECAR = f"{FOLDER}/poses.json"
@@ -45,7 +48,7 @@ class Marker:
     def error_mm(self) -> float | None:
         if self.model is None:
             return None
-        return float(np.linalg.norm(np.subtract(self.model, self.measured))) * 1000
+        return math.dist(self.model, self.measured) * 1000
 
 
 @dataclass(frozen=True)
@@ -62,25 +65,26 @@ def image_rel(pose: str) -> str:
     return f"{FOLDER}/{pose}.png"
 
 
-def _point(m: np.ndarray) -> tuple[float, float, float]:
-    return (float(m[0]) + 0.0, float(m[1]) + 0.0, float(m[2]) + 0.0)
+def _point(m: tuple[float, float, float]) -> tuple[float, float, float]:
+    return (m[0] + 0.0, m[1] + 0.0, m[2] + 0.0)
 
 
 def scene(robot: Robot, kp: KnownPose) -> Scene:
-    """Forward kinematics (mimic followers resolved) for one known pose."""
-    poses = kinematics.forward(robot, dict(kp.joints))
-    links = {name: _point(t[:3, 3]) for name, t in poses.items()}
+    """Forward kinematics (mimic followers resolved) for one known pose, in plain floats
+    (descgen/zero_pose.py: check rebuilds the record without numpy's import)."""
+    poses = zero_pose.forward(robot, dict(kp.joints))
+    links = {name: _point(t[1]) for name, t in poses.items()}
     bones = [(j.parent, j.child) for j in robot.joints if j.child in poses and j.parent in poses]
     markers = []
     for fm in kp.frames:
-        t = kinematics.relative(poses, fm.frame, fm.relative_to)
-        base = poses.get(fm.relative_to) if fm.relative_to is not None else np.eye(4)
-        measured_root = None if base is None else _point((base @ np.array([*fm.xyz, 1.0]))[:3])
+        t = zero_pose.relative(poses, fm.frame, fm.relative_to)
+        base = poses.get(fm.relative_to) if fm.relative_to is not None else ORIGIN
+        measured_root = None if base is None else _point(apply(base, fm.xyz))
         markers.append(
             Marker(
                 fm.frame,
                 fm.relative_to,
-                None if t is None else _point(t[:3, 3]),
+                None if t is None else _point(t[1]),
                 fm.xyz,
                 links.get(fm.frame),
                 measured_root,
@@ -139,6 +143,7 @@ def embeds(robot: Robot) -> list[str]:
 
 def _draw(s: Scene, target: Path) -> None:
     import matplotlib
+    import numpy as np
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

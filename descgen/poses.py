@@ -1,22 +1,22 @@
 """Known poses: measured frame positions against forward kinematics of the model.
 
 Joints a pose does not list are at zero, and mimic joints follow their leaders
-(``descgen.mimic``), as they do on the robot."""
+(``descgen.mimic``), as they do on the robot. Plain floats (``descgen.zero_pose``): every
+``check`` evaluates the known poses, and numpy's import would be ~60 ms of it."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
 
-import numpy as np
-
-from . import display, kinematics, mimic
+from . import display, mimic, zero_pose
 from .findings import Finding
 from .model import ONE_DOF, FrameMeasurement, KnownPose, Robot, Vec3
+from .record import record
 
 EPS = 1e-9  # a measurement exactly at its tolerance passes, whatever the float rounding
 
 
-@dataclass(frozen=True)
+@record
 class Row:
     pose: KnownPose
     measurement: FrameMeasurement
@@ -30,7 +30,10 @@ class Row:
 
     @property
     def distance(self) -> float:
-        return float(np.linalg.norm(self.error)) if self.error else float("inf")
+        if not self.error:
+            return float("inf")
+        x, y, z = self.error
+        return math.sqrt(x * x + y * y + z * z)
 
     @property
     def ok(self) -> bool:
@@ -41,13 +44,14 @@ def evaluate(robot: Robot) -> list[Row]:
     rows: list[Row] = []
     root = robot.root() or ""
     for kp in robot.known_poses:
-        poses = kinematics.forward(robot, dict(kp.joints))
+        poses = zero_pose.forward(robot, dict(kp.joints))
         for fm in kp.frames:
-            t = kinematics.relative(poses, fm.frame, fm.relative_to)
+            t = zero_pose.relative(poses, fm.frame, fm.relative_to)
             if t is None:
                 rows.append(Row(kp, fm, None, None, fm.relative_to or root))
                 continue
-            model = (float(t[0, 3]) + 0.0, float(t[1, 3]) + 0.0, float(t[2, 3]) + 0.0)
+            x, y, z = t[1]
+            model = (x + 0.0, y + 0.0, z + 0.0)
             error = tuple(m - x for m, x in zip(model, fm.xyz, strict=True))
             rows.append(Row(kp, fm, model, (error[0], error[1], error[2]), fm.relative_to or root))
     return rows
@@ -67,7 +71,7 @@ def path_joints(robot: Robot, frame: str, base: str | None) -> list[str]:
     for j in chain:
         part = f"{j.name} ({j.type}, origin {_mm(j.origin.xyz)}"
         if any(j.origin.rpy):
-            part += f" rpy {tuple(round(float(np.degrees(a)), 3) for a in j.origin.rpy)} deg"
+            part += f" rpy {tuple(round(math.degrees(a), 3) for a in j.origin.rpy)} deg"
         if j.type in ONE_DOF and j.axis is not None:
             part += f", axis {tuple(j.axis)}"
         rel = mimic.relation(robot, j.name)

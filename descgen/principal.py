@@ -28,9 +28,9 @@ import functools
 import math
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from .model import Inertia
+from .record import record
 
 Moments = tuple[float, float, float]
 _AXES = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
@@ -106,7 +106,7 @@ _EPS = 2.0**-52
 _PAIRS = ((0, 1), (0, 2), (1, 2))
 
 
-@dataclass(frozen=True)
+@record
 class Bounded:
     """Eigenvalues in ascending order and ``err``: numpy's k-th value is within ``err`` of
     ``values[k]``. ``err`` is 0 only for exact answers (a diagonal tensor)."""

@@ -27,13 +27,11 @@ from __future__ import annotations
 import json
 import os
 import re
-import stat
-import tempfile
 from pathlib import Path
 from typing import Any
 
 from . import evidence_hash
-from .cache_dir import cache_root
+from .cache_dir import cache_root, read_at_most, write_atomic
 
 SCHEMA = 1  # bump when an entry's layout changes
 MAX_ENTRY_BYTES = 64 * 1024 * 1024  # a 1000-link expansion is a few MB
@@ -66,7 +64,7 @@ def get(kind: str, k: str) -> Any:
     folder = _folder(kind)
     if folder is None or not _KEY.fullmatch(k):
         return None
-    raw = _read_at_most(folder / f"{k}.json", MAX_ENTRY_BYTES)
+    raw = read_at_most(folder / f"{k}.json", MAX_ENTRY_BYTES)
     if raw is None:
         return None
     try:
@@ -91,54 +89,12 @@ def put(kind: str, k: str, value: object) -> None:
         return
     if len(text.encode("utf-8")) > MAX_ENTRY_BYTES:
         return
-    _write_atomic(folder / f"{k}.json", text)
+    write_atomic(folder / f"{k}.json", text)
     _prune(folder)
 
 
 def _no_constant(name: str) -> None:
     raise ValueError(f"{name} is not a number descgen writes")
-
-
-def _read_at_most(path: Path, limit: int) -> bytes | None:
-    """At most ``limit`` bytes of ``path`` without blocking on a FIFO; None when it cannot be
-    opened, is no regular file, or holds more."""
-    try:
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
-    except (OSError, ValueError):
-        return None
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            return None
-        chunks, size = [], 0
-        while size <= limit:
-            chunk = os.read(fd, limit + 1 - size)
-            if not chunk:
-                break
-            chunks.append(chunk)
-            size += len(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(fd)
-    data = b"".join(chunks)
-    return None if len(data) > limit else data
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    """``text`` to ``path`` through a temporary file and a rename: a concurrent reader sees the
-    old entry or the new one, never half of one."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as out:
-                out.write(text)
-            os.replace(tmp, path)
-        except BaseException:
-            os.unlink(tmp)
-            raise
-    except (OSError, ValueError):
-        return
 
 
 def _prune(folder: Path) -> None:

@@ -116,6 +116,15 @@ def compose(a: Frame, b: Frame) -> Frame:
     return matmul(ra, rb), (moved[0] + ta[0], moved[1] + ta[1], moved[2] + ta[2])
 
 
+def inverse(f: Frame) -> Frame:
+    """The frame's inverse: (R^T, -R^T t), exact for a rotation (what ``numpy.linalg.inv`` of
+    the 4x4 gives, to rounding)."""
+    r, t = f
+    rt: Rot = ((r[0][0], r[1][0], r[2][0]), (r[0][1], r[1][1], r[2][1]), (r[0][2], r[1][2], r[2][2]))
+    back = rotate(rt, t)
+    return rt, (-back[0], -back[1], -back[2])
+
+
 def apply(f: Frame, p: Sequence[float]) -> Vec:
     """R p + t."""
     r, t = f

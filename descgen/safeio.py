@@ -12,17 +12,17 @@ from __future__ import annotations
 
 import os
 import stat
-from dataclasses import dataclass
 from pathlib import Path
 
 from .findings import Finding, InputError, Where
+from .record import record
 
 MIB = 1024 * 1024
 MAX_DESCRIPTION_BYTES = 64 * MIB  # URDF, SRDF, Xacro, controllers YAML: the largest real ones are a few MB
 _CHUNK = 1 * MIB
 
 
-@dataclass(frozen=True)
+@record
 class Codes:
     """The finding codes a reader reports; the spec loader keeps its YAML codes."""
 

@@ -20,12 +20,12 @@ import functools
 import math
 import re
 import sys
-from dataclasses import dataclass
 from decimal import Decimal
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .cache_dir import cache_folder
+from .record import record
 
 if TYPE_CHECKING:
     import pint
@@ -83,7 +83,7 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-@dataclass(frozen=True)
+@record
 class Kind:
     """A kind of physical quantity a field accepts."""
 
@@ -520,7 +520,7 @@ def describe_si(value: float, kind_name: str) -> str:
     return f"{value:.6g} {unit.replace('**', '^')}"
 
 
-@dataclass(frozen=True)
+@record
 class Range:
     """Plausible SI magnitudes for one role of a quantity (inclusive)."""
 

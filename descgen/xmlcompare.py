@@ -46,12 +46,20 @@ def first_difference(a: etree._Element, b: etree._Element, path: str = "") -> st
 
 def _same_tree(a: etree._Element, b: etree._Element) -> bool:
     """True when the two trees are node for node the same in document order: tags, attributes
-    as written, texts and child counts (which with the order fix the tree's shape). Then
-    nothing differs; otherwise _difference walks the trees to say what (a generated URDF
-    and its Xacro's expansion are usually equal, and this pass costs half of that walk)."""
+    in any order (xacro writes them sorted, the URDF in template order; _difference compares
+    them by name), texts (up to surrounding whitespace, as _difference compares them: xacro
+    drops the indentation the URDF has) and child counts (which with the order fix the tree's
+    shape). Then nothing differs; otherwise _difference walks the trees to say what (a
+    generated URDF and its Xacro's expansion are usually equal, and this pass costs half of
+    that walk)."""
     try:
         for x, y in zip(a.iter(), b.iter(), strict=True):
-            if x.tag != y.tag or x.text != y.text or len(x) != len(y) or x.items() != y.items():
+            if x.tag != y.tag or len(x) != len(y):
+                return False
+            items = x.items()
+            if items != y.items() and sorted(items) != sorted(y.items()):
+                return False
+            if x.text != y.text and (x.text or "").strip() != (y.text or "").strip():
                 return False
     except ValueError:  # one tree has more nodes
         return False

@@ -1,4 +1,5 @@
-"""Forward kinematics in plain floats (descgen/rigid.py frames), for the audit rules.
+"""Forward kinematics in plain floats (descgen/rigid.py frames), for the audit rules and the
+known poses (POSE010, evidence/known_poses.md) that every ``check`` evaluates.
 
 The same kinematics as :mod:`descgen.kinematics` (a joint's frame is ``origin * motion(q)``,
 mimic joints follow their leaders, the axis is normalised), without numpy: the audit poses
@@ -13,7 +14,7 @@ from collections.abc import Mapping
 
 from . import mimic
 from .model import ROTATING, Joint, Robot
-from .rigid import IDENTITY, ORIGIN, Frame, axis_angle_rot, compose, frame, norm
+from .rigid import IDENTITY, ORIGIN, Frame, axis_angle_rot, compose, frame, inverse, norm
 
 
 def motion(j: Joint, q: float) -> Frame:
@@ -71,3 +72,13 @@ def at_zero(robot: Robot) -> dict[str, Frame]:
     _AT_ZERO.insert(0, (robot, poses))
     del _AT_ZERO[_AT_ZERO_KEPT:]
     return poses
+
+
+def relative(poses: Mapping[str, Frame], frame_: str, base: str | None) -> Frame | None:
+    """Pose of ``frame_`` in ``base`` (the root when None), as :func:`descgen.kinematics.relative`;
+    None when either is not in ``poses``."""
+    if frame_ not in poses or (base is not None and base not in poses):
+        return None
+    if base is None:
+        return poses[frame_]
+    return compose(inverse(poses[base]), poses[frame_])

@@ -22,7 +22,7 @@ import pytest
 import yaml
 from pydantic import BaseModel
 
-from descgen import inertia, yamlsource
+from descgen import inertia, rigid, yamlsource
 from descgen.findings import InputError
 from descgen.model import Box, Cylinder, Pose, Sphere
 from descgen.spec import load_spec, load_spec_text
@@ -77,7 +77,7 @@ def test_principal_moments_by_hand() -> None:
 
 def test_rotation_rows_are_the_numpy_matrix() -> None:
     for rpy in ((0.3, -0.7, 1.1), (math.pi / 2, 0.0, -math.pi / 2), (0.0, 0.0, 0.0)):
-        assert np.array_equal(np.array(inertia.rotation(rpy)), rpy_matrix(rpy))
+        assert np.array_equal(np.array(rigid.rpy_rot(rpy)), rpy_matrix(rpy))
 
 
 @pytest.mark.e2e

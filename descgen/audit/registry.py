@@ -9,12 +9,12 @@ from __future__ import annotations
 import inspect
 import re
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass
 from typing import Literal
 
-from ..codes import CODES
+from ..codes import CODES, NAMES
 from ..findings import Finding, Severity, Where
 from ..model import Robot
+from ..record import record
 
 CATEGORIES = ("TOPO", "NAME", "UNIT", "INER", "GEOM", "JOINT", "POSE", "SRDF", "CTRL", "FRAME", "TIME", "MOVEIT")
 _CODE = re.compile(rf"^({'|'.join(CATEGORIES)})\d{{3}}$")
@@ -26,7 +26,7 @@ RuleFn = Callable[[Robot], Iterable[Finding]]
 Stage = Literal["input", "check"]
 
 
-@dataclass(frozen=True)
+@record
 class RuleInfo:
     code: str
     name: str
@@ -50,7 +50,7 @@ def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Ca
             raise ValueError(f"rule code {code!r} is not a category prefix plus 3 digits")
         if code in RULES or any(r.name == name for r in RULES.values()):
             raise ValueError(f"duplicate rule {code} {name}")
-        if code in CODES or any(c.name == name for c in CODES.values()):
+        if code in CODES or name in NAMES:
             # one catalogue (descgen/codes.py): a rule may not reuse a loader/reader code
             raise ValueError(f"rule {code} {name} duplicates a catalogue code")
         doc = inspect.cleandoc(fn.__doc__ or "")

@@ -11,18 +11,18 @@ never cached: catkin_pkg reads it again and says so every time.
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 from .. import result_cache
 from ..evidence_hash import sha256
 from ..findings import Finding, Where
 from ..model import Robot
+from ..record import record
 
 _KIND = "catkin-package"
 
 
-@dataclass(frozen=True)
+@record
 class Manifest:
     """What catkin_pkg read from a manifest it parsed and validated without warnings."""
 

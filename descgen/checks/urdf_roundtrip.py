@@ -17,11 +17,10 @@ check_urdf (urdfdom's own C++ parser, check 3) reads every URDF as well.
 from __future__ import annotations
 
 import io
+import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any, cast
-
-import numpy as np
 
 from ..findings import Finding, Where
 from ..model import Box, Collision, Cylinder, Geometry, Inertial, Joint, Link, Mesh, Pose, Robot, Sphere, Visual
@@ -45,6 +44,8 @@ def _close(a: Any, b: Any) -> bool:
     sa, sb = _shape(a, fa), _shape(b, fb)
     if sa is not None and sb is not None:
         return sa == sb and all(map(_near, fa, fb))
+    import numpy as np  # only for what _shape cannot walk (a field that is neither numbers nor arrays)
+
     try:
         x = np.asarray(a, dtype=float)
         y = np.asarray(b, dtype=float)
@@ -65,7 +66,7 @@ def _shape(v: Any, flat: list[float]) -> tuple[int, ...] | None:
     if isinstance(v, int | float):
         flat.append(float(v))
         return ()
-    if isinstance(v, np.ndarray):
+    if _is_array(v):
         if v.dtype.kind not in "biuf":
             return None
         flat.extend(float(x) for x in v.ravel().tolist())
@@ -82,8 +83,18 @@ def _shape(v: Any, flat: list[float]) -> tuple[int, ...] | None:
     return None
 
 
+def _is_array(v: Any) -> bool:
+    """Whether ``v`` is a numpy array, without importing numpy: check and generate compare
+    plain floats only (the read-back reader and the model build no arrays), and numpy's import
+    is ~60 ms of a cold check. An array exists only if numpy is already imported."""
+    np = sys.modules.get("numpy")
+    return np is not None and isinstance(v, np.ndarray)
+
+
 def _show(v: Any) -> str:
-    if isinstance(v, np.ndarray):
+    if _is_array(v):
+        import numpy as np
+
         return np.array2string(v, precision=12, separator=", ").replace("\n", "")
     return repr(v)
 
@@ -125,6 +136,8 @@ class _Compare:
         (the readers build them so), compared without _close's generic shape walk; a
         difference shows the model's as the array it is."""
         if model is None or not _rows_close(model, urdf):
+            import numpy as np  # a difference is shown as the array numpy prints; only then imported
+
             self.diff(kind, name, field, None if model is None else np.asarray(model, dtype=float), urdf)
 
 
@@ -317,6 +330,7 @@ def compare_readback(robot: Robot, urdf_text: str, file: str) -> list[Finding]:
 def from_yourdfpy(robot: Any) -> rb.Robot:
     """yourdfpy's robot in the read-back reader's terms, urdfdom's defaults filled in where
     yourdfpy leaves None (limit lower/upper, dynamics, safety controller soft limits)."""
+    import numpy as np  # yourdfpy's values are numpy arrays (and it imports numpy itself)
 
     def origin(m: Any) -> rb.Matrix:
         a = np.eye(4) if m is None else np.asarray(m, dtype=float)

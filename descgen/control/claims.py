@@ -29,9 +29,9 @@ parameter definitions at ros-controls/ros2_controllers ``jazzy`` (docs/ros2_cont
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from ..model import Controller
+from ..record import record
 
 IMU_INTERFACES = (
     "orientation.x",
@@ -50,7 +50,7 @@ FT_INTERFACES = ("force.x", "force.y", "force.z", "torque.x", "torque.y", "torqu
 JOINT_PARAMS = ("joints", "command_joints", "joint", "left_wheel_names", "right_wheel_names")
 
 
-@dataclass(frozen=True)
+@record
 class Claims:
     """Full interface names (``<component>/<interface>``) a controller needs when active."""
 

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from ..findings import Finding, InputError, Where
+from ..record import record
 
 if TYPE_CHECKING:
     from ..model import Robot
@@ -98,7 +99,7 @@ class JointHw:
     policy: str = "reject"  # reject | clip
 
 
-@dataclass(frozen=True)
+@record
 class MimicHw:
     """HardwareInfo.mimic_joints: a joint whose states follow a leader in the same block."""
 

@@ -10,11 +10,11 @@ verbatim). Elements in the xacro namespace are refused, since xacro would run th
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from lxml import etree
 
 from ..findings import Where
+from ..record import record
 from ..xmlcompare import line_of
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -23,7 +23,7 @@ OWN_TAGS = frozenset(("robot", "link", "joint", "material"))
 MAX_CHARS = 1_000_000  # one pass-through element; a description is bounded too (safeio)
 
 
-@dataclass(frozen=True)
+@record
 class Kept:
     tag: str
     xml: str

@@ -11,16 +11,16 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from decimal import Decimal
 
 from .. import units
+from ..record import record
 
 # What --units may name, per kind: the unit written and how many SI units one of it is.
 _SCALED = {"mm": Decimal("1000"), "g": Decimal("1000"), "cm": Decimal("100")}
 
 
-@dataclass(frozen=True)
+@record
 class Units:
     """The units written for lengths, angles and masses (everything else stays SI)."""
 

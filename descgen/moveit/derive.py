@@ -7,9 +7,8 @@ controller is a ros2_controllers action server (moveit_simple_controller_manager
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from .. import model as m
+from ..record import record
 
 # ros2_controllers (jazzy) plugin -> (MoveIt controller type, action namespace it serves):
 # JTC serves ~/follow_joint_trajectory, both gripper action controllers ~/gripper_cmd
@@ -22,7 +21,7 @@ ACTION_SERVERS: dict[str, tuple[str, str]] = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class MoveItController:
     name: str
     type: str  # FollowJointTrajectory | GripperCommand | ParallelGripperCommand

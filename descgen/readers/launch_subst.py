@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..findings import Finding, InputError, Where
+from ..record import record
 
 MAX_SITES = 1000  # a real file has a handful; more is a bomb, not a parameter file
 MAX_DEPTH = 8  # nesting of substitutions inside substitution arguments
@@ -41,7 +42,7 @@ _WHY = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class Site:
     """One substitution in the file: its text, its name (``var``, ``env``, ...), the variable it
     names (``var`` only), where it starts, and what it became (None: left as written)."""
@@ -53,7 +54,7 @@ class Site:
     value: str | None
 
 
-@dataclass(frozen=True)
+@record
 class Substituted:
     text: str  # what launch would hand to the YAML parser (the file's text if it has no site)
     sites: tuple[Site, ...]

@@ -31,9 +31,10 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 
 from lxml import etree
+
+from ..record import record
 
 Matrix = tuple[tuple[float, float, float, float], ...]  # 4x4 homogeneous transform, row major
 Vec3 = tuple[float, float, float]
@@ -49,7 +50,7 @@ class ReadbackError(ValueError):
         self.line = line
 
 
-@dataclass(frozen=True)
+@record
 class Geometry:
     kind: str  # box, cylinder, sphere, mesh
     size: Vec3 | None = None
@@ -59,7 +60,7 @@ class Geometry:
     scale: Vec3 | None = None
 
 
-@dataclass(frozen=True)
+@record
 class Shape:
     """A ``<visual>`` or ``<collision>``; ``material`` is the visual's material name."""
 
@@ -69,14 +70,14 @@ class Shape:
     material: str | None
 
 
-@dataclass(frozen=True)
+@record
 class Inertial:
     mass: float
     origin: Matrix
     inertia: tuple[Vec3, Vec3, Vec3]
 
 
-@dataclass(frozen=True)
+@record
 class Link:
     name: str
     visuals: tuple[Shape, ...]
@@ -85,7 +86,7 @@ class Link:
     line: int
 
 
-@dataclass(frozen=True)
+@record
 class Limit:
     lower: float
     upper: float
@@ -93,7 +94,7 @@ class Limit:
     velocity: float
 
 
-@dataclass(frozen=True)
+@record
 class Joint:
     name: str
     type: str
@@ -108,7 +109,7 @@ class Joint:
     line: int
 
 
-@dataclass(frozen=True)
+@record
 class Material:
     name: str
     rgba: tuple[float, ...] | None
@@ -116,7 +117,7 @@ class Material:
     line: int
 
 
-@dataclass(frozen=True)
+@record
 class Robot:
     name: str
     links: tuple[Link, ...]

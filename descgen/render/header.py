@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import hashlib
 import re
-from dataclasses import dataclass
 
+from ..record import record
 from .formatting import comment, visible
 
 MARK = "descgen spec-sha256="
@@ -50,7 +50,7 @@ def add(path: str, body: str, spec_display: str, spec_hash: str) -> str:
     return "\n".join([*lines, body])
 
 
-@dataclass(frozen=True)
+@record
 class Stamp:
     spec_hash: str
     content_hash: str

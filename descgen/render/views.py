@@ -28,17 +28,18 @@ from ..model import (
     Sphere,
     Visual,
 )
+from ..record import record
 from .formatting import num, vec, xacro_text
 
 
-@dataclass(frozen=True)
+@record
 class Prop:
     name: str
     value: str
     source: str | None
 
 
-@dataclass(frozen=True)
+@record
 class ShapeView:
     name: str | None
     xyz: str
@@ -48,7 +49,7 @@ class ShapeView:
     material: str | None = None
 
 
-@dataclass(frozen=True)
+@record
 class InertialView:
     xyz: str
     rpy: str
@@ -56,7 +57,7 @@ class InertialView:
     tensor: tuple[tuple[str, str], ...]
 
 
-@dataclass(frozen=True)
+@record
 class LinkView:
     name: str
     comment: str | None
@@ -65,7 +66,7 @@ class LinkView:
     inertial: InertialView | None
 
 
-@dataclass(frozen=True)
+@record
 class JointView:
     name: str
     type: str
@@ -81,7 +82,7 @@ class JointView:
     safety: tuple[tuple[str, str], ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class Item:
     """One entry of the element list: a link with its parent joint, or a part instance."""
 
@@ -91,7 +92,7 @@ class Item:
     part: str | None = None
 
 
-@dataclass(frozen=True)
+@record
 class PartMacro:
     name: str
     params: str

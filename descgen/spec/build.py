@@ -26,15 +26,23 @@ from .moveit import moveit
 from .ros2_control import ros2_control
 from .rules import duplicate_semantics
 from .semantic import complete_states, known_pose, semantic
+from .sources import cites_sources
 
 
 class Builder:
     def __init__(
-        self, doc: Document, spec: s.RobotSpec, ranges: dict[str, units.Range], package_paths: tuple[Path, ...] = ()
+        self,
+        doc: Document,
+        spec: s.RobotSpec,
+        ranges: dict[str, units.Range],
+        package_paths: tuple[Path, ...] = (),
+        stand_ins: bool = False,
     ) -> None:
+        """``stand_ins``: ``spec`` was validated from data holding stand-in values (spec/load.py),
+        which carry a source the document does not have."""
         self.doc = doc
         self.spec = spec
-        self.conv = Converter(doc, ranges, package_paths=package_paths)
+        self.conv = Converter(doc, ranges, package_paths=package_paths, cited=stand_ins or cites_sources(doc))
 
     @property
     def findings(self) -> list[Finding]:

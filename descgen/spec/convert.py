@@ -16,6 +16,7 @@ from .. import units
 from ..findings import Finding, Where
 from ..yamlsource import Document, Path_
 from .quantity import Written, convert
+from .sources import sources
 
 # What a joint's limit, value and gains are, by joint type: (value kind, plausibility role).
 POSITION = {
@@ -43,12 +44,19 @@ class Converter:
     joint_types: dict[str, str] = field(default_factory=dict)  # set once every joint is built
     # --package-path: searched for package:// meshes after the spec's package_paths: (inertia from a mesh)
     package_paths: tuple[Path, ...] = ()
+    # whether a source can be cited anywhere in this build (spec/sources.py cites_sources): when
+    # not, every element's source is None without walking its values (~20 % of a build)
+    cited: bool = True
     # (type, text, kind, role) -> SI of the values converted so far: a spec repeats its limits
     # and offsets ("-90 deg", "100 mm") on every joint; a value that fails is not kept
     _done: dict[tuple[type, object, str, str | None], float] = field(default_factory=dict, init=False, repr=False)
 
     def where(self, path: Path_) -> Where:
         return self.doc.where(path)
+
+    def sources(self, *objs: object) -> str | None:
+        """:func:`sources.sources` of spec elements; None when nothing in the build cites one."""
+        return sources(*objs) if self.cited else None
 
     def error(self, code: str, message: str, hint: str, subject: str, where: Where) -> None:
         self.findings.append(Finding(code, "error", message, hint, subject, where))

@@ -8,7 +8,6 @@ from ..yamlsource import Path_
 from . import models as s
 from .convert import ACCELERATION, DAMPING, EFFORT, FRICTION, POSITION, VELOCITY, Converter
 from .geometry import pose
-from .sources import sources
 
 
 def joint(
@@ -35,7 +34,7 @@ def joint(
         _mimic(conv, body, path, pos_kind),
         _safety(conv, body, path, pos_kind, pos_role),
         conv.where(path),
-        sources(body, origin.source, source),
+        conv.sources(body, origin.source, source),
         part,
         body.description,
     )

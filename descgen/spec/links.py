@@ -9,7 +9,6 @@ from . import models as s
 from .convert import Converter
 from .geometry import geometry, pose
 from .inertial import inertial
-from .sources import sources
 
 
 def link(
@@ -40,7 +39,7 @@ def link(
         collisions,
         inert,
         where or conv.where(path),
-        sources(body, source),
+        conv.sources(body, source),
         part,
         body.description,
     )

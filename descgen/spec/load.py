@@ -8,7 +8,7 @@ import hashlib
 import re
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +18,7 @@ from ..audit import run as run_rules
 from ..findings import Finding, InputError, errors
 from ..mesh_paths import resolve_spec
 from ..model import Robot
+from ..record import record
 from ..units import Range
 from ..yamlsource import Document, Path_, load, loads
 from .build import Builder
@@ -28,7 +29,7 @@ from .quantity import MEMO, Measured
 from .rules import derived_package_name, missing_sources
 
 
-@dataclass(frozen=True)
+@record
 class Loaded:
     robot: Robot
     spec: RobotSpec
@@ -73,7 +74,7 @@ def _collector_paused() -> Iterator[None]:
             gc.enable()
 
 
-@dataclass(frozen=True)
+@record
 class _Place:
     """Where a spec file lies, for resolving the files it names (meshes)."""
 
@@ -120,9 +121,9 @@ def from_document(doc: Document, rules: bool = True, place: _Place | None = None
 
 
 def _build(
-    doc: Document, spec: RobotSpec, ranges: dict[str, Range], place: _Place | None = None
+    doc: Document, spec: RobotSpec, ranges: dict[str, Range], place: _Place | None = None, stand_ins: bool = False
 ) -> tuple[Robot, list[Finding]]:
-    builder = Builder(doc, spec, ranges, place.package_paths if place is not None else ())
+    builder = Builder(doc, spec, ranges, place.package_paths if place is not None else (), stand_ins)
     robot = builder.build()
     problems = list(builder.findings)
     if place is not None:  # before the rules, so they see the files (and a missing one is an input error)
@@ -171,7 +172,7 @@ def _rules_despite(
             spec = RobotSpec.model_validate(data, context={"ranges": ranges})
         except ValidationError:
             return []
-        robot, built = _build(doc, spec, ranges, place)
+        robot, built = _build(doc, spec, ranges, place, stand_ins=True)
         every_bad = [*bad, *drop, *_bad_paths(doc, built)]
         judged = [f for f in run_rules(robot, stage="input") if not _inside(f, doc, every_bad)]
         runs.append(errors([*built, *judged]))

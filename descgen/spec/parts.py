@@ -10,7 +10,6 @@ from . import models as s
 from .convert import Converter
 from .joints import joint
 from .links import link
-from .sources import sources
 
 
 def expand(conv: Converter, parts: list[s.PartSpec]) -> tuple[list[m.Link], list[m.Joint]]:
@@ -20,7 +19,7 @@ def expand(conv: Converter, parts: list[s.PartSpec]) -> tuple[list[m.Link], list
         pp = ("parts", i)
         for k, inst in enumerate(part.instances):
             ip = (*pp, "instances", k)
-            source = sources(part, inst.source)
+            source = conv.sources(part, inst.source)
             links.append(link(conv, inst.link, part.link, (*pp, "link"), part.name, source, conv.where(ip)))
             j = joint(conv, inst.joint, part.joint, inst.link, inst.origin, (*pp, "joint"), part.name, source)
             joints.append(replace(j, where=conv.where(ip)))

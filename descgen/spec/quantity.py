@@ -11,13 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Annotated, Any
 
 from pydantic import BeforeValidator, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
 from .. import display, units
+from ..record import record
 
 QUANTITY_SCHEMA: dict[str, Any] = {
     "anyOf": [
@@ -33,7 +33,7 @@ QUANTITY_SCHEMA: dict[str, Any] = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class Written:
     """A value as written in the spec, with its source; not yet converted."""
 
@@ -47,7 +47,7 @@ class Written:
         return str(self.value)
 
 
-@dataclass(frozen=True)
+@record
 class Measured:
     """A converted value: SI magnitude, what was written, its source."""
 

@@ -10,7 +10,6 @@ from . import models as s
 from .convert import Converter
 from .geometry import pose
 from .links import link
-from .sources import sources
 
 # REP 103: the optical frame is z forward, x right, y down relative to the body frame
 # (x forward, y left, z up); as fixed-axis rpy this is (-pi/2, 0, -pi/2). See
@@ -26,7 +25,7 @@ def expand(conv: Converter, specs: list[s.SensorSpec]) -> tuple[list[m.Link], li
         sp = ("sensors", i)
         where = conv.where(sp)
         link_name, joint_name = f"{sn.name}_link", f"{sn.name}_joint"
-        links.append(link(conv, link_name, sn.link, (*sp, "link"), None, sources(sn), where))
+        links.append(link(conv, link_name, sn.link, (*sp, "link"), None, conv.sources(sn), where))
         joints.append(
             m.Joint(
                 joint_name,
@@ -36,7 +35,7 @@ def expand(conv: Converter, specs: list[s.SensorSpec]) -> tuple[list[m.Link], li
                 pose(sn.origin),
                 None,
                 where=where,
-                source=sources(sn, sn.origin.source),
+                source=conv.sources(sn, sn.origin.source),
                 description=sn.description,
             )
         )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
+from ..yamlsource import Document
 from .quantity import Measured, Written
 
 
@@ -51,6 +52,14 @@ def _collect(obj: object, out: list[str]) -> None:
     elif isinstance(obj, dict):
         for item in obj.values():
             _collect(item, out)
+
+
+def cites_sources(doc: Document) -> bool:
+    """Whether the spec names a source anywhere. Every source (a model's ``source:``, a
+    quantity's ``{value, source}``) is a YAML key ``source``, however the key is spelled or
+    reached (quoted, escaped, through an alias: each path is in ``key_marks``); without one,
+    every element's sources are None."""
+    return any(path[-1] == "source" for path in doc.key_marks if path)
 
 
 def sources(*objs: object) -> str | None:

@@ -26,6 +26,7 @@ from .. import collision, derive
 from ..codes import CODES
 from ..findings import Finding, InputError, Where
 from ..model import NOWHERE, Robot
+from ..record import record
 from .contacts import Run, available, runs, unresolved_meshes
 from .motion import JointMotion, NoRange, analyse, axis_text, direction, grid, sentence, sweepable, value_text
 
@@ -34,13 +35,13 @@ DEFAULT_STEPS = 36
 MIN_STEPS, MAX_STEPS = 1, 3600
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True)  # a frozen dataclass: ruff sees a default Settings() as immutable
 class Settings:
     state: str | None = None  # a group state or known pose; None: the matrix's default state, else zero
     steps: int = DEFAULT_STEPS
 
 
-@dataclass(frozen=True)
+@record
 class Sweep:
     robot: Robot
     state: str  # "" = every joint at zero

@@ -15,17 +15,17 @@ from __future__ import annotations
 
 import importlib.util
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 
 from lxml import etree
 
 from .. import collision
 from ..model import ONE_DOF, Mesh, Robot
+from ..record import record
 from ..urdf_xml import geometry, origin, xyz
 from .motion import JointMotion, joint_values
 
 
-@dataclass(frozen=True)
+@record
 class Run:
     """``link1`` and ``link2`` collide from grid step ``first`` to ``last`` of ``joint``."""
 

@@ -17,17 +17,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
-
-from .. import kinematics, mimic
+from .. import mimic
 from ..model import ONE_DOF, ROTATING, Joint, Robot
+from ..record import record
+
+if TYPE_CHECKING:  # numpy and the numpy kinematics are imported by the functions that compute: check
+    import numpy as np  # reads the sweep table from the result cache and needs only this module's words
 
 MOVES = 1e-9  # a pose change below this (metres, rotation-matrix entries) is no motion
 
 
-@dataclass(frozen=True)
+@record
 class Moved:
     """One moving link: the displacement of its origin in the root frame (metres)."""
 
@@ -36,7 +38,7 @@ class Moved:
     tip: str  # "group": a group's chain tip; "end": the end of a chain (no moving child); else ""
 
 
-@dataclass(frozen=True)
+@record
 class JointMotion:
     joint: Joint
     values: tuple[float, ...]  # the grid, lower to upper (both exact)
@@ -63,7 +65,7 @@ class JointMotion:
         return shown[0] if shown else (tips[0] if tips else None)
 
 
-@dataclass(frozen=True)
+@record
 class NoRange:
     """A joint with nothing to sweep: no limits, or lower >= upper."""
 
@@ -110,6 +112,10 @@ def analyse(
     disabled: set[frozenset[str]],
 ) -> JointMotion:
     """Which links ``j`` moves over ``values``, how far, and which pairs could collide."""
+    import numpy as np
+
+    from .. import kinematics
+
     poses = [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in values]
     first = poses[0]
     moving = {n for p in poses[1:] for n, m in p.items() if n in first and np.max(np.abs(m - first[n])) > MOVES}
@@ -161,6 +167,8 @@ def _pairs(
 ) -> tuple[tuple[str, str], ...]:
     """Pairs of links with geometry, not disabled, whose relative pose changes in the sweep
     (two links both fixed, or moving together, collide at every step or at none: not this joint's)."""
+    import numpy as np
+
     names = [n for n in geometry if n in poses[0]]
     # each link's pose relative to its pose at the first step: a pair's relative pose changes
     # exactly when these differ (A0^-1 B0 = A^-1 B  <=>  A A0^-1 = B B0^-1)
@@ -183,6 +191,10 @@ def _axis_at_state(robot: Robot, j: Joint, state: Mapping[str, float]) -> tuple[
     """The joint axis in the root frame with every joint at the state."""
     if j.axis is None or j.parent is None or j.type not in (*ROTATING, "prismatic"):
         return None
+    import numpy as np
+
+    from .. import kinematics
+
     poses = kinematics.forward(robot, joint_values(robot, state, j.name, state.get(j.name, 0.0)))
     if j.parent not in poses:
         return None
