@@ -11,11 +11,11 @@ import contextlib
 import dataclasses
 import json
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
-from . import __version__, cli_format, report
+from . import __version__, cli_format, collector, report
 from . import cli_types as types
 from .findings import Finding, InputError, Where, summary
 
@@ -680,7 +680,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # argparse: --help, --version, or a bad option value (exit 2)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT if exc.code else EXIT_OK
     try:
-        with _collector_paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check)):
+        # validate, generate and check: every object lives to the end (descgen/collector.py), and
+        # their input is bounded (a spec is at most 5 MiB); tf-audit and control keep the collector
+        with collector.paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check)):
             code = int(args.fn(args))
         sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit
         return code
@@ -716,26 +718,6 @@ def _fewer_collections() -> None:
         gc.set_threshold(10_000, gen1, gen2)
 
 
-@contextlib.contextmanager
-def _collector_paused(paused: bool) -> Iterator[None]:
-    """The cyclic collector off while ``validate``, ``generate`` or ``check`` runs: nearly every
-    object they make (YAML nodes, the spec, the model, DOM and lxml trees) lives to the end,
-    so each pass frees next to nothing; at 1000 links the passes were ~0.12 s of ~1.9 s CPU
-    with the same peak memory. Their input is bounded (a spec is at most 5 MiB), so the cycles
-    left for later are too; a long ``tf-audit`` or ``control`` run keeps the collector. Turned
-    back on afterwards: ``main`` also runs inside the test suite's process."""
-    import gc
-
-    was = gc.isenabled()
-    if paused:
-        gc.disable()
-    try:
-        yield
-    finally:
-        if was and paused:
-            gc.enable()
-
-
 def _settled_import(module: str) -> None:
     """Import a command's modules with the cyclic collector paused, then freeze what they made.
     Importing pydantic, numpy, jinja2 and the spec models creates hundreds of thousands of
@@ -762,7 +744,6 @@ def _reader_went_away() -> int:
     """The reader of our output closed it (``descgen rules | head``): stop quietly. Python
     flushes stdout again at exit; pointing it at devnull keeps that flush from raising a
     second BrokenPipeError (https://docs.python.org/3/library/signal.html#note-on-sigpipe)."""
-    import contextlib
     import os
 
     # not a real file (captured in tests): then nothing is flushed to a pipe at exit

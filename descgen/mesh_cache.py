@@ -34,12 +34,12 @@ import json
 import math
 import os
 import re
-import sys
 import threading
 from pathlib import Path
 from typing import Any
 
 from .cache_dir import CACHE_ENV, cache_root, read_at_most, write_atomic
+from .dist_version import installed_version
 from .meshes import MAX_TRIANGLES, MeshFacts
 from .safeio import MIB
 
@@ -56,7 +56,7 @@ _INT64 = 1 << 63
 
 
 def _version(dist: str) -> str:
-    found = _dist_info_version(dist)
+    found = installed_version(dist)
     if found is not None:
         return found
     from importlib import metadata  # ~30 ms of imports (email, zipfile, ...): only when the scan fails
@@ -65,34 +65,6 @@ def _version(dist: str) -> str:
         return metadata.version(dist)
     except metadata.PackageNotFoundError:
         return "none"
-
-
-def _dist_info_version(dist: str) -> str | None:
-    """The ``Version:`` of the first ``<dist>-*.dist-info/METADATA`` on sys.path, as
-    importlib.metadata finds it (first path entry first); None for anything else (an egg,
-    a zip, two candidates in one folder), which importlib.metadata then answers."""
-    for entry in sys.path:
-        try:
-            names = [n for n in os.listdir(entry or ".") if n.lower().startswith(f"{dist}-")]
-        except OSError:
-            continue
-        if not names:
-            continue
-        infos = [n for n in names if n.endswith(".dist-info")]
-        if len(infos) != 1 or len(names) != 1:
-            return None
-        try:
-            with open(os.path.join(entry or ".", infos[0], "METADATA"), "rb") as f:
-                head = f.read(4096).decode("utf-8", "replace")
-        except OSError:
-            return None
-        for line in head.splitlines():
-            if line.startswith("Version: "):
-                return line[len("Version: ") :].strip() or None
-            if not line:
-                break
-        return None
-    return None
 
 
 @functools.cache

@@ -316,9 +316,18 @@ class Controller:
     params: tuple[tuple[str, object], ...] = ()
     where: Where = NOWHERE
     calibrated: tuple[Calibrated, ...] = ()
+    # where each parameter's value is written ("key", or "key[i]" for a list item; "type"
+    # too); empty for a spec's controllers, whose findings stay at the controller
+    marks: tuple[tuple[str, Where], ...] = ()
 
     def param(self, key: str, default: object = None) -> object:
         return dict(self.params).get(key, default)
+
+    def where_of(self, key: str, index: int | None = None) -> Where:
+        """The most specific known place of parameter ``key`` (item ``index`` of a list):
+        the item, else the value, else the controller itself (e.g. for a missing key)."""
+        marks = dict(self.marks)
+        return marks.get(f"{key}[{index}]") or marks.get(key) or self.where
 
 
 @record
@@ -338,6 +347,7 @@ class Ros2Control:
     # The first is the default, which ``plugin``/``params`` above describe.
     variants: tuple[HardwareVariant, ...] = ()
     gpios: tuple[ControlGpio, ...] = ()
+    update_rate_where: Where = NOWHERE  # its value in an audited controllers file; else unknown
 
     def hardware_blocks(self) -> tuple[HardwareBlock, ...]:
         """Every ``<ros2_control>`` block in document order; a spec with one block has no

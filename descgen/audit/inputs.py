@@ -84,17 +84,20 @@ def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Findin
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
-        from ..readers.controllers import read_controllers_text  # PyYAML only when a YAML is given
+        from ..readers.controllers import read_controllers_file  # PyYAML only when a YAML is given
 
-        controllers, rate, more = read_controllers_text(
+        cf = read_controllers_file(
             _read(options.controllers, "controllers YAML").decode("utf-8", "replace"),
             str(options.controllers),
             options.launch_args,
         )
-        found += more
+        found += cf.found
         rc = robot.ros2_control or Ros2Control("", where=Where(str(options.controllers)))
         robot = dataclasses.replace(
-            robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
+            robot,
+            ros2_control=dataclasses.replace(
+                rc, controllers=cf.controllers, update_rate=cf.update_rate, update_rate_where=cf.update_rate_where
+            ),
         )
     if options.moveit_config is not None:  # its SRDF and ros2_controllers.yaml only when not given
         from .moveit_config import attach

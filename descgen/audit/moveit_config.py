@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ..findings import Finding, Where
 from ..model import Robot, Ros2Control
-from ..readers.controllers import read_controllers_text
+from ..readers.controllers import read_controllers_file
 from ..readers.moveit_config import config_folder, find_srdf, read_moveit_config
 from ..readers.srdf import read_srdf_text
 from ..safeio import read_bounded
@@ -37,11 +37,14 @@ def attach(
     yaml_file = folder / "ros2_controllers.yaml"
     if read_controllers and yaml_file.exists():
         text = read_bounded(yaml_file, "controllers YAML").decode("utf-8", "replace")
-        controllers, rate, more = read_controllers_text(text, str(yaml_file))
-        found += more
+        cf = read_controllers_file(text, str(yaml_file))
+        found += cf.found
         rc = robot.ros2_control or Ros2Control("", where=Where(str(yaml_file)))
         robot = dataclasses.replace(
-            robot, ros2_control=dataclasses.replace(rc, controllers=controllers, update_rate=rate)
+            robot,
+            ros2_control=dataclasses.replace(
+                rc, controllers=cf.controllers, update_rate=cf.update_rate, update_rate_where=cf.update_rate_where
+            ),
         )
         config = dataclasses.replace(config, ros2_controllers_file=str(yaml_file))
     return dataclasses.replace(robot, moveit_config=config), found

@@ -9,6 +9,7 @@ from typing import Any
 
 from .. import model as m
 from ..findings import Finding, InputError, Where
+from ..record import record
 from ..yamlsource import Document, loads
 from .launch_subst import Site, substitute
 
@@ -115,12 +116,41 @@ def _moved(f: Finding, position: Callable[[int, int], tuple[int, int]]) -> Findi
     return dataclasses.replace(f, where=dataclasses.replace(f.where, line=line, col=col))
 
 
+@record
+class ControllersFile:
+    controllers: tuple[m.Controller, ...]
+    update_rate: float | None
+    update_rate_where: Where  # the value as written (or the file, when not given)
+    found: tuple[Finding, ...]
+
+
+def _marks(doc: Document, params: Mapping[str, Any], base: tuple[str, ...]) -> tuple[tuple[str, Where], ...]:
+    """Where each parameter's value (and each item of a list value) is written, so a finding
+    about one joint name points at that name, not at the controller."""
+    out: list[tuple[str, Where]] = []
+    for k, v in params.items():
+        paths: list[tuple[str, tuple[str | int, ...]]] = [(str(k), (*base, str(k)))]
+        paths += [(f"{k}[{i}]", (*base, str(k), i)) for i in range(len(v) if isinstance(v, list) else 0)]
+        for label, path in paths:
+            if path in doc.value_marks:
+                out.append((label, Where(doc.file, *doc.value_marks[path])))
+    return tuple(out)
+
+
 def read_controllers_text(
     text: str, file: str, launch_args: Mapping[str, str] | None = None
 ) -> tuple[tuple[m.Controller, ...], float | None, list[Finding]]:
     """Controllers (type from the classic ``controller_manager.ros__parameters.<name>.type``
     or from ``<name>.ros__parameters.type``), their parameters, and the update rate.
     ``launch_args``: the values of the file's ``$(var NAME)`` launch substitutions."""
+    f = read_controllers_file(text, file, launch_args)
+    return f.controllers, f.update_rate, list(f.found)
+
+
+def read_controllers_file(text: str, file: str, launch_args: Mapping[str, str] | None = None) -> ControllersFile:
+    """As read_controllers_text, with where the update rate is written. Each controller is
+    located at its own mapping key (its top-level entry, else its entry under
+    controller_manager) and carries the places of its parameters (Controller.marks)."""
     doc, _, early = load_substituted(text, file, launch_args)
     data = doc.data
     if not isinstance(data, dict):
@@ -136,27 +166,35 @@ def read_controllers_text(
     cm_path = ("controller_manager", "ros__parameters")
     cm = shape.mapping(shape.mapping(data.get("controller_manager"), cm_path[:1]).get("ros__parameters"), cm_path)
     types: dict[str, str] = {}
+    type_marks: dict[str, tuple[tuple[str, Where], ...]] = {}
     for name, entry in cm.items():
         if isinstance(entry, dict) and "type" in entry:
             types[str(name)] = str(entry["type"])
+            type_marks[str(name)] = _marks(doc, {"type": entry["type"]}, (*cm_path, str(name)))
     own: dict[str, dict[str, Any]] = {}
     for name, entry in data.items():
         if name == "controller_manager" or not isinstance(entry, dict) or "ros__parameters" not in entry:
             continue
         own[name] = shape.mapping(entry["ros__parameters"], (name, "ros__parameters"))
-        if "type" in own[name]:
-            types.setdefault(str(name), str(own[name]["type"]))
+        if "type" in own[name] and str(name) not in types:
+            types[str(name)] = str(own[name]["type"])
+            type_marks[str(name)] = _marks(doc, {"type": own[name]["type"]}, (name, "ros__parameters"))
     controllers = []
     for name, type_ in types.items():
+        params = own.get(name, {})
         controllers.append(
             m.Controller(
                 name,
                 type_,
-                shape.params(own.get(name, {}), (name, "ros__parameters")),
-                doc.where((name,)) if name in data else doc.where((*cm_path, name)),
+                shape.params(params, (name, "ros__parameters")),
+                # the key that names the controller, not its value (the ros__parameters: line)
+                doc.where((name,), key=True) if name in data else doc.where((*cm_path, name), key=True),
+                marks=type_marks.get(name, ())
+                + _marks(doc, {k: v for k, v in params.items() if k != "type"}, (name, "ros__parameters")),
             )
         )
     rate = cm.get("update_rate")
+    rate_where = doc.where((*cm_path, "update_rate"))
     if not isinstance(rate, int | float) or isinstance(rate, bool) or not shape.finite(rate, (*cm_path, "update_rate")):
-        return tuple(controllers), None, shape.found
-    return tuple(controllers), float(rate), shape.found
+        return ControllersFile(tuple(controllers), None, rate_where, tuple(shape.found))
+    return ControllersFile(tuple(controllers), float(rate), rate_where, tuple(shape.found))

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 from xml.dom import expatbuilder
 
+from .. import collector
 from ..findings import Finding, InputError, Where
 from ..packages import find_package as find_package  # re-exported: importer, simulate
 from . import xacro_eval as xe
@@ -510,22 +511,6 @@ def _mark_static(doc: Any) -> None:
 
 
 @contextlib.contextmanager
-def _collector_paused() -> Iterator[None]:
-    """Python's cyclic collector paused while a document is parsed: a parse makes only nodes
-    that stay alive, so a collection during it frees nothing, and on a 1000-link Xacro two of
-    them traversed the growing DOM (~0.1 s). The collector is left as it was found."""
-    import gc
-
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.enable()
-
-
-@contextlib.contextmanager
 def _skipping_static(box: _Sandbox | None) -> Iterator[None]:
     """xacro's walk without the elements it would leave unchanged: most of a plain URDF and
     of descgen's own Xacro (on 1000 links ~90 % of the expansion). The sandbox's accounts see
@@ -536,7 +521,7 @@ def _skipping_static(box: _Sandbox | None) -> Iterator[None]:
     original_eval_all = xacro.eval_all
 
     def parse(inp: Any, filename: str | None = None) -> Any:
-        with _collector_paused():
+        with collector.paused():
             doc = original_parse(inp, filename)
             _mark_static(doc)
         return doc

@@ -3,17 +3,16 @@
 from __future__ import annotations
 
 import copy
-import gc
 import hashlib
 import re
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from pydantic import ValidationError
 
+from .. import collector
 from ..audit import run as run_rules
 from ..findings import Finding, InputError, errors
 from ..mesh_paths import resolve_spec
@@ -47,31 +46,14 @@ def load_spec(
     beside the spec and in its ``package_paths:`` (then ``package_paths``), see
     descgen/mesh_paths.py; a spec given as text has no folder, so its meshes are not."""
     p = Path(path)
-    with _collector_paused():
+    with collector.paused():
         doc = load(p, display or str(path))
         return from_document(doc, rules, _Place(p, tuple(package_paths)))
 
 
 def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loaded:
-    with _collector_paused():
+    with collector.paused():
         return from_document(loads(text, file), rules)
-
-
-@contextmanager
-def _collector_paused() -> Iterator[None]:
-    """Python's cyclic collector paused while a spec is loaded. Loading makes objects that
-    all stay alive (YAML nodes until built, then the data, the marks, the validated spec, the
-    model) and next to no cyclic garbage, so every pass finds nothing to free: at 1000 links
-    ~60 passes took ~140 ms of a ~550 ms load, one pass over it all afterwards ~90 ms.
-    Refcounting still frees everything dropped; a cycle made here waits for the next pass.
-    The collector is left as it was found."""
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.enable()
 
 
 @record

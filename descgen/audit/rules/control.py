@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections import defaultdict
 from collections.abc import Iterator
 from typing import cast
 
 from ...control.claims import JOINT_PARAMS, claims_of, command_pairs, state_pairs
 from ...control.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
-from ...findings import Finding
+from ...findings import Finding, Where
 from ...model import WITH_LIMITS, Controller, HardwareBlock, Robot
 from ...readers.launch_subst import unresolved
+from ..located import Param
 from ..registry import at, rule
 
 _SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
@@ -20,6 +22,21 @@ def _list(v: object) -> list[object]:
     if isinstance(v, list | tuple):
         return list(v)
     return [] if v is None else [v]
+
+
+def _naming(c: Controller, joint: str) -> object:
+    """Where ``c`` names ``joint`` (the first joint parameter that lists it), else ``c``."""
+    for key in JOINT_PARAMS:
+        value = c.param(key)
+        for i, name in enumerate(_list(value)):
+            if str(name) == joint:
+                return Param(c, key, i if isinstance(value, tuple | list) else None)
+    return c
+
+
+def _placed(f: Finding, where: Where) -> Finding:
+    """``f`` at ``where`` (a parameter's value in a controllers file) when that is known."""
+    return dataclasses.replace(f, where=where) if where.line else f
 
 
 @rule("CTRL001", "control-joint-not-in-urdf", "error")
@@ -74,7 +91,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
             if (joint, iface) not in cmd and not unresolved(joint) and not unresolved(iface):  # CTRL052/053
                 yield at(
                     "CTRL002",
-                    c,
+                    _naming(c, joint),
                     f"controller '{c.name}' claims '{joint}/{iface}', which the hardware does not export",
                     f"add command: [{iface}] to ros2_control joint '{joint}', or fix the controller",
                     subject=f"controller:{c.name}",
@@ -88,7 +105,7 @@ def controller_interface_missing(robot: Robot) -> Iterator[Finding]:
                 continue
             yield at(
                 "CTRL002",
-                c,
+                _naming(c, comp),
                 f"controller '{c.name}' reads state '{comp}/{iface}', which the hardware does not export",
                 f"add state: [{iface}] to ros2_control {'sensor' if comp in sensors else 'joint'} '{comp}'",
                 subject=f"controller:{c.name}",
@@ -266,11 +283,15 @@ def _wheel_value(robot: Robot, c: Controller, key: str, derived: float) -> Itera
         value, tol, elem = cal.value, cal.tolerance or DEFAULT_CALIBRATION_TOLERANCE, cast(object, cal)
         fix = f"fix calibrated.{key} of controller '{c.name}' in the spec (a length, e.g. \"{derived:.4g} m\")"
     elif isinstance(given, int | float) and not isinstance(given, bool):
-        value, tol, elem = float(given), DEFAULT_CALIBRATION_TOLERANCE, c
+        value, tol, elem = float(given), DEFAULT_CALIBRATION_TOLERANCE, cast(object, Param(c, key))
         fix = f"set {key} in {c.where.file} to the robot's value in metres (the URDF gives {derived:.6g} m)"
     else:
         yield at(
-            "CTRL006", c, f"controller '{c.name}' {key} is {given!a}, not a number", "write metres", subject=subject
+            "CTRL006",
+            Param(c, key),
+            f"controller '{c.name}' {key} is {given!a}, not a number",
+            "write metres",
+            subject=subject,
         )
         return
     if abs(value - derived) <= tol + 1e-12:
@@ -320,13 +341,14 @@ def update_rate_not_whole(robot: Robot) -> Iterator[Finding]:
     """
     rc = robot.ros2_control
     if rc is not None and rc.update_rate is not None and not float(rc.update_rate).is_integer():
-        yield at(
+        found = at(
             "CTRL007",
             rc,
             f"update_rate {rc.update_rate:g} Hz is not a whole number",
             "write e.g. 100 Hz",
             subject="ros2_control",
         )
+        yield _placed(found, rc.update_rate_where)  # the value in the controllers file, when read from one
 
 
 @rule("CTRL008", "command-limit-beyond-urdf", "error")
@@ -390,11 +412,12 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
         # an unknown type's `joint` may mean something else; its joint lists are still joints
         keys = JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
         for key in keys:
-            for name in _list(c.param(key)):
+            value = c.param(key)
+            for i, name in enumerate(_list(value)):
                 if robot.joint(str(name)) is None and not unresolved(name):  # CTRL052/053 stand for it
                     yield at(
                         "CTRL009",
-                        c,
+                        Param(c, key, i if isinstance(value, tuple | list) else None),
                         f"controller '{c.name}' {key} names '{name}', which is not a URDF joint",
                         "fix the joint name",
                         subject=f"controller:{c.name}",
@@ -418,15 +441,16 @@ def broadcaster_fed_from_commands(robot: Robot) -> Iterator[Finding]:
     for c in rc.controllers:
         if not c.type.startswith("joint_state_broadcaster/"):
             continue
-        named = [str(x) for x in _list(c.param("interfaces"))]
+        interfaces = c.param("interfaces")
+        named = [(str(x), Param(c, "interfaces", i)) for i, x in enumerate(_list(interfaces))]
         mapping = c.param("map_interface_to_joint_state")
         if isinstance(mapping, tuple):
-            named += [str(v) for _, v in mapping]
-        for iface in named:
+            named += [(str(v), Param(c, "map_interface_to_joint_state")) for _, v in mapping]
+        for iface, elem in named:
             if iface in commands and iface not in states:
                 yield at(
                     "CTRL010",
-                    c,
+                    elem,
                     f"'{c.name}' publishes '{iface}', which the hardware exports only as a command interface",
                     "broadcast state interfaces only; publish desired values on their own topic",
                     subject=f"controller:{c.name}",
@@ -730,7 +754,7 @@ def controller_claims_unchecked(robot: Robot) -> Iterator[Finding]:
         if not claims_of(c).known:
             yield at(
                 "CTRL049",
-                c,
+                Param(c, "type"),
                 f"controller '{c.name}' has type {c.type}, whose claims descgen does not know: "
                 "its joints and interfaces were not checked",
                 "check the type's spelling (plugin XMLs of ros2_controllers) and its interfaces by hand",

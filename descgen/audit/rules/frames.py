@@ -9,6 +9,7 @@ from ...findings import Finding
 from ...frames import RSP, edges
 from ...model import ONE_DOF, Robot
 from ...readers.launch_subst import unresolved
+from ..located import Param
 from ..registry import at, rule
 
 
@@ -97,9 +98,14 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
     links = {lk.name for lk in robot.links}
     all_edges = edges(robot)
     known = links | {e.parent for e in all_edges} | {e.child for e in all_edges}
+    # Only declared edges are checked as edges: a diff-drive controller's odom -> base edge
+    # joins the tree exactly when its base_frame_id is a link, which the controller check
+    # below reports at that parameter (a second finding for the same name would be a double
+    # report; an unresolved $(var ...) there is CTRL052/053's).
+    declared = {(x.parent, x.child, x.owner) for x in robot.external_frames}
     for e in all_edges:
         joined = e.child in links or e.parent in links or any(x.parent == e.child for x in all_edges)
-        if e.owner != RSP and not joined:
+        if e.owner != RSP and (e.parent, e.child, e.owner) in declared and not joined:
             yield at(
                 "FRAME004",
                 e,
@@ -113,7 +119,7 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
             if base not in links and not unresolved(base):  # CTRL052/053 stand for a $(var ...)
                 yield at(
                     "FRAME004",
-                    c,
+                    Param(c, "base_frame_id"),  # not given: the controller's own key
                     f"controller '{c.name}' base_frame_id '{base}' is not a link of the robot",
                     "set base_frame_id to the base's frame (base_footprint or base_link)",
                     subject=f"controller:{c.name}",
@@ -123,7 +129,7 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
             if frame is not None and str(frame) not in known and not unresolved(frame):
                 yield at(
                     "FRAME004",
-                    c,
+                    Param(c, "frame_id"),
                     f"controller '{c.name}' frame_id '{frame}' is not a frame of the robot",
                     "use a link name",
                     subject=f"controller:{c.name}",
