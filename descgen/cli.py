@@ -674,7 +674,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     _fewer_collections()
     from .pydantic_plugins import no_plugin_lookup
 
-    no_plugin_lookup()
+    with no_plugin_lookup():
+        return _run(argv)
+
+
+def _run(argv: Sequence[str] | None) -> int:
     try:
         args = parser().parse_args(argv)
     except SystemExit as exc:  # argparse: --help, --version, or a bad option value (exit 2)

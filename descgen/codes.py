@@ -791,7 +791,8 @@ register(
         "xacro-limit-exceeded",
         "error",
         "read",
-        "An audited Xacro exceeds a bound (number size, string length, loop, macro calls, evaluation steps, time).",
+        "An audited Xacro exceeds a bound (number size, string length, loop, macro calls, elements, text, evaluation "
+        "steps, time).",
         """Unbounded expansion would hang or exhaust memory; the bounds are far beyond any real robot.
       Simplify the expression, or pass --trust-xacro for a file you trust.""",
     ),

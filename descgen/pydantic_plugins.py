@@ -16,10 +16,12 @@ changes nothing in pydantic.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import sys
 import types
+from collections.abc import Iterator
 from importlib.machinery import ModuleSpec
 from typing import TYPE_CHECKING, Any, cast
 
@@ -70,8 +72,19 @@ def _stop() -> None:
         sys.meta_path.remove(_FINDER)
 
 
-def no_plugin_lookup() -> None:
-    """Before pydantic's first validator: its plugin loader finds none (see the module docstring).
-    Nothing is imported now (``descgen --help`` loads no pydantic)."""
-    if LOADER not in sys.modules and _FINDER not in sys.meta_path:
+@contextlib.contextmanager
+def no_plugin_lookup() -> Iterator[None]:
+    """Inside: pydantic's plugin loader, when first imported, finds none (see the module
+    docstring). Nothing is imported now (``descgen --help`` loads no pydantic). Afterwards the
+    stand-in is gone, so a process that runs ``cli.main`` and then validates on its own (the
+    test suite, a library user) gets pydantic's own loader for every later validator."""
+    installed = LOADER not in sys.modules and _FINDER not in sys.meta_path
+    if installed:
         sys.meta_path.insert(0, _FINDER)
+    try:
+        yield
+    finally:
+        if installed:
+            _stop()
+            if isinstance(sys.modules.get(LOADER), _NoPlugins):
+                del sys.modules[LOADER]

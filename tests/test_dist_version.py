@@ -59,7 +59,7 @@ def test_absent_and_ambiguous_fall_back(tmp_path: Path, monkeypatch: pytest.Monk
 def test_validate_and_the_tool_versions_do_not_import_importlib_metadata() -> None:
     """Fresh process: validate needs no importlib.metadata (pydantic's plugin lookup imported it),
     nor do the tool versions check's result cache and evidence records ask for; check's
-    pydantic plugin loader is descgen's stand-in."""
+    pydantic plugin loader was descgen's stand-in, gone once main returns."""
     probe = (
         "import sys\n"
         "from descgen.cli import main\n"
@@ -70,7 +70,7 @@ def test_validate_and_the_tool_versions_do_not_import_importlib_metadata() -> No
         " 'Jinja2', 'rosbags', 'trimesh')\n"
         "print('versions', 'importlib.metadata' in sys.modules)\n"
         "main(['check', sys.argv[1]])\n"
-        "print('check', type(sys.modules['pydantic.plugin._loader']).__name__)\n"
+        "print('check', 'pydantic.plugin._loader' in sys.modules)\n"
     )
     done = subprocess.run(
         [sys.executable, "-c", probe, str(ROOT / "specs" / "warehouse_arm.yaml")],
@@ -81,4 +81,5 @@ def test_validate_and_the_tool_versions_do_not_import_importlib_metadata() -> No
     )
     assert done.returncode == 0, done.stderr[-2000:]
     seen = [line for line in done.stdout.splitlines() if line.startswith(("validate ", "versions ", "check "))]
-    assert seen == ["validate False", "versions False", "check _NoPlugins"], done.stdout
+    # main took its stand-in loader away again, and pydantic's own was never imported
+    assert seen == ["validate False", "versions False", "check False"], done.stdout

@@ -16,16 +16,18 @@ from tests.conftest import ROOT
 _PROBE = """
 import sys
 from descgen.pydantic_plugins import LOADER, no_plugin_lookup
-no_plugin_lookup()
-from pydantic import BaseModel
-class M(BaseModel):
-    x: int
-print("valid", M(x="3").x)
-print("loader", type(sys.modules[LOADER]).__name__)
-print("metadata", "importlib.metadata" in sys.modules)
-if sys.argv[1:] == ["other-name"]:
-    print("group", sys.modules[LOADER].PYDANTIC_ENTRY_POINT_GROUP)
+with no_plugin_lookup():
+    from pydantic import BaseModel
+    class M(BaseModel):
+        x: int
+    print("valid", M(x="3").x)
     print("loader", type(sys.modules[LOADER]).__name__)
+    print("metadata", "importlib.metadata" in sys.modules)
+    if sys.argv[1:] == ["other-name"]:
+        print("group", sys.modules[LOADER].PYDANTIC_ENTRY_POINT_GROUP)
+        print("loader", type(sys.modules[LOADER]).__name__)
+# afterwards: no finder left, and no stand-in for the next import of the loader
+print("after", type(sys.modules.get(LOADER)).__name__, any(type(f).__name__ == "_Finder" for f in sys.meta_path))
 """
 
 
@@ -42,11 +44,11 @@ def _run(env_value: str | None, *args: str) -> list[str]:
 
 @pytest.mark.parametrize("value", [None, "__all__", "1", "true"])
 def test_no_plugins_wanted_no_lookup(value: str | None) -> None:
-    assert _run(value) == ["valid 3", "loader _NoPlugins", "metadata False"]
+    assert _run(value) == ["valid 3", "loader _NoPlugins", "metadata False", "after NoneType False"]
 
 
 def test_plugins_left_on_by_the_user_are_looked_up() -> None:
-    assert _run("logfire") == ["valid 3", "loader module", "metadata True"]
+    assert _run("logfire") == ["valid 3", "loader module", "metadata True", "after module False"]
 
 
 def test_any_other_name_loads_the_real_loader() -> None:
@@ -56,4 +58,5 @@ def test_any_other_name_loads_the_real_loader() -> None:
         "metadata False",
         "group pydantic",
         "loader module",
+        "after module False",
     ]

@@ -274,6 +274,27 @@ def test_manifests_are_catkin_pkgs_and_refusals_are_never_cached(cache: Path, mo
     assert len(calls) == 3
 
 
+def test_a_refused_manifest_still_prints_catkins_warnings(cache: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """catkin_pkg prints its warnings before it raises (validate collects both); read_manifest
+    must too, not only for a manifest it accepts. A version with a leading zero is a warning,
+    an invalid e-mail an error."""
+    import re
+
+    import catkin_pkg.package
+
+    from descgen.checks.package import read_manifest
+
+    text = (ROOT / "generated" / DESCRIPTION / "package.xml").read_text()
+    text = re.sub(r"<version>[^<]*</version>", "<version>0.01.0</version>", text)
+    text = re.sub(r'email="[^"]*"', 'email="not-an-email"', text, count=1)
+    with pytest.raises(catkin_pkg.package.InvalidPackage):
+        read_manifest(text)
+    assert (
+        'WARNING: Package "warehouse_arm_description" does not follow the version conventions'
+        in capsys.readouterr().err
+    )
+
+
 def test_sweep_table_reused_recomputed_and_stale_reported(project: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     from descgen.sweep import evidence
 

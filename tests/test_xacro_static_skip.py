@@ -155,4 +155,35 @@ def test_the_marking_is_iterative_on_a_deep_document() -> None:
     depth = 5000  # deeper than Python's recursion limit
     doc = minidom.parseString("<robot>" + "<a>" * depth + "</a>" * depth + "</robot>")
     xacro_file._mark_static(doc)
-    assert doc.documentElement.__dict__.get(xacro_file._STATIC) == 0  # plain all the way down, no text
+    # plain all the way down: no text, and the 5000 <a> below <robot> counted
+    assert doc.documentElement.__dict__.get(xacro_file._STATIC) == (0, depth)
+
+
+def test_macros_of_empty_elements_are_bounded_by_the_element_count(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Empty elements carry no text and are no macro calls: without an element bound a few
+    macros (here 20 calls of a 400-element body, 8,000 elements) grow the DOM until the clock
+    runs out. Lowered bound so the test is fast; the real one is 500,000."""
+    path = tmp_path / "wide.urdf.xacro"
+    body = "<a/>" * 400
+    calls = "<xacro:e/>" * 20
+    path.write_text(
+        f'<?xml version="1.0"?>\n<robot name="r" {XMLNS}><xacro:macro name="e">{body}</xacro:macro>{calls}</robot>\n'
+    )
+    assert expand(path, "r").count(b"<a/>") == 8000  # within the real bound
+    monkeypatch.setattr(xacro_file, "MAX_ELEMENTS", 5000)
+    with pytest.raises(InputError) as info:
+        expand(path, "r")
+    assert info.value.findings[0].code == "READ033" and "more than 5000 elements" in info.value.findings[0].message
+
+
+def test_skipped_elements_still_count_toward_the_element_bound(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """One plain <link> holding 6,000 plain elements is skipped as a whole; its elements count."""
+    path = tmp_path / "plain.urdf.xacro"
+    path.write_text(f'<?xml version="1.0"?>\n<robot name="r" {XMLNS}><link name="a">{"<p/>" * 6000}</link></robot>\n')
+    assert expand(path, "r").count(b"<p/>") == 6000
+    monkeypatch.setattr(xacro_file, "MAX_ELEMENTS", 5000)
+    with pytest.raises(InputError) as info:
+        expand(path, "r")
+    assert "more than 5000 elements" in info.value.findings[0].message

@@ -50,10 +50,12 @@ def read_manifest(text: str) -> Manifest:
     from catkin_pkg.package import parse_package_string
 
     warnings: list[str] = []
-    pkg = parse_package_string(text, warnings=warnings)
-    pkg.validate(warnings=warnings)
-    for warning in warnings:
-        print("WARNING: " + warning, file=sys.stderr)  # as catkin_pkg prints them (warnings=None)
+    try:
+        pkg = parse_package_string(text, warnings=warnings)
+        pkg.validate(warnings=warnings)
+    finally:  # printed also when validate then refuses the manifest, as catkin_pkg itself does
+        for warning in warnings:
+            print("WARNING: " + warning, file=sys.stderr)  # as catkin_pkg prints them (warnings=None)
     found = Manifest(int(pkg.package_format), str(pkg.name), tuple(str(d.name) for d in pkg.exec_depends))
     if not warnings:
         result_cache.put(_KIND, key, {"format": found.format, "name": found.name, "exec_depends": found.exec_depends})

@@ -53,7 +53,7 @@ def expand_packages(
             "args": sorted(args.items()),
             "env": {name: os.environ.get(name) for name in SANDBOX_ENV},
         },
-        ("xacro", "lxml"),
+        ("xacro", "lxml", "PyYAML"),  # PyYAML: xacro.load_yaml, which a Xacro may call
     )
     hit = result_cache.get(_KIND, key)
     if isinstance(hit, dict) and isinstance(hit.get("xml"), str) and isinstance(hit.get("folder"), str):

@@ -50,6 +50,9 @@ about the machine or the user."""
 
 MAX_FILE_BYTES = 16 * 1024 * 1024  # one Xacro, include or YAML file
 MAX_MACRO_CALLS = 20_000
+# elements walked or skipped (each costs ~300 bytes of DOM): a 1000-link robot has ~20,000;
+# without it, macros of empty elements would grow the document until the clock ran out
+MAX_ELEMENTS = 500_000
 MAX_TEXT = 50 * 1024 * 1024  # characters of all evaluated text together
 MAX_SECONDS = 30.0
 
@@ -79,6 +82,7 @@ class _Sandbox:
     deadline: float
     budget: xe.Budget = field(default_factory=xe.Budget)
     macro_calls: int = 0
+    elements: int = 0
     text: int = 0
     refusal: _Refusal | None = None
 
@@ -206,6 +210,12 @@ def _refuse(box: _Sandbox, error: xe.RefusedError, needle: str) -> xe.RefusedErr
     return error
 
 
+def _count_elements(box: _Sandbox, n: int, needle: str) -> None:
+    box.elements += n
+    if box.elements > MAX_ELEMENTS:
+        raise _refuse(box, xe.RefusedError(f"more than {MAX_ELEMENTS} elements", "limit"), needle)
+
+
 def _tick(box: _Sandbox) -> None:
     if time.monotonic() > box.deadline:
         raise xe.RefusedError(f"expanding this Xacro took longer than {MAX_SECONDS:g} s", "limit")
@@ -313,6 +323,7 @@ def _sandboxed(box: _Sandbox) -> Iterator[None]:
         # xacro asks this of every element it walks; only a xacro:* tag is a call (xacro returns
         # False for the rest), so only those count: a plain 20,000-element URDF is no bomb
         if not node.tagName.startswith("xacro:"):
+            _count_elements(box, 1, node.tagName)
             return original_macro_call(node, macros, names)
         box.macro_calls += 1
         _tick(box)
@@ -458,9 +469,10 @@ def expand_located(
 _STATIC = "_descgen_static_text"  # on a parsed element whose content xacro's walk leaves as it is
 
 
-def _static_size(e: Any) -> int | None:
-    """The characters of ``e``'s attribute values and text when ``xacro.eval_all(e)`` would
-    leave ``e`` and everything below it exactly as they are, else None.
+def _static_size(e: Any) -> tuple[int, int] | None:
+    """The characters of ``e``'s attribute values and text, and the elements below it, when
+    ``xacro.eval_all(e)`` would leave ``e`` and everything below it exactly as they are, else
+    None.
 
     That is so when xacro's walk finds nothing to do: no attribute named ``xacro:*`` or
     ``xmlns:xacro`` (it removes those), no ``$`` in a value or text (without one,
@@ -470,7 +482,7 @@ def _static_size(e: Any) -> int | None:
     ``xacro:eval-comments`` on, and the same for every child element. Nothing depends on the
     symbols, so the answer holds wherever the element is walked. A value too long for one
     ``eval_text`` is not static: the walk refuses it there, as before."""
-    total = 0
+    total = below = 0
     for name, value in e.attributes.items():
         if name.startswith("xacro:") or name == "xmlns:xacro" or "$" in value or len(value) > xe.MAX_SIZE:
             return None
@@ -481,7 +493,8 @@ def _static_size(e: Any) -> int | None:
             size = None if c.tagName.startswith("xacro:") else c.__dict__.get(_STATIC)
             if size is None:
                 return None
-            total += size
+            total += size[0]
+            below += 1 + size[1]
         elif kind == c.TEXT_NODE:
             data = c.data
             if "$" in data or len(data) > xe.MAX_SIZE:
@@ -489,7 +502,7 @@ def _static_size(e: Any) -> int | None:
             total += len(data)
         elif kind == c.COMMENT_NODE and "xacro:eval-comments" in c.data:
             return None
-    return total
+    return total, below
 
 
 def _mark_static(doc: Any) -> None:
@@ -532,7 +545,8 @@ def _skipping_static(box: _Sandbox | None) -> Iterator[None]:
             return original_eval_all(node, macros, symbols)
         if box is not None:
             _tick(box)
-            box.text += size
+            _count_elements(box, size[1], node.tagName)  # the element itself was counted by its parent's walk
+            box.text += size[0]
             if box.text > MAX_TEXT:
                 raise _refuse(box, xe.RefusedError("this Xacro produces more text than an audit reads", "limit"), "")
         return None
