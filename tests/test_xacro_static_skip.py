@@ -164,7 +164,7 @@ def test_macros_of_empty_elements_are_bounded_by_the_element_count(
 ) -> None:
     """Empty elements carry no text and are no macro calls: without an element bound a few
     macros (here 20 calls of a 400-element body, 8,000 elements) grow the DOM until the clock
-    runs out. Lowered bound so the test is fast; the real one is 500,000."""
+    runs out. Lowered bound so the test is fast; the real one is 200,000."""
     path = tmp_path / "wide.urdf.xacro"
     body = "<a/>" * 400
     calls = "<xacro:e/>" * 20

@@ -50,9 +50,9 @@ about the machine or the user."""
 
 MAX_FILE_BYTES = 16 * 1024 * 1024  # one Xacro, include or YAML file
 MAX_MACRO_CALLS = 20_000
-# elements walked or skipped (each costs ~300 bytes of DOM): a 1000-link robot has ~20,000;
-# without it, macros of empty elements would grow the document until the clock ran out
-MAX_ELEMENTS = 500_000
+# elements walked or skipped: a 1000-link robot has ~20,000. Without a bound, macros of empty
+# elements grow the document until the clock runs out (500,000 took ~20 s and ~470 MB)
+MAX_ELEMENTS = 200_000
 MAX_TEXT = 50 * 1024 * 1024  # characters of all evaluated text together
 MAX_SECONDS = 30.0
 
