@@ -1878,6 +1878,18 @@ register(
       read or written.""",
     ),
     C(
+        "CTRL056",
+        "controllers-entry-without-type",
+        "info",
+        "read",
+        "A top-level entry of a controllers YAML has ros__parameters but no type, neither its own nor under "
+        "controller_manager: it is not read as a controller, so nothing in it is checked.",
+        """Jazzy takes a controller's type from controller_manager.ros__parameters.<name>.type or from
+      <name>.ros__parameters.type; a spawner may also pass --controller-type, and one parameter file
+      may hold other nodes' parameters. descgen cannot tell which, so it does not guess a type and
+      says that the entry went unchecked, instead of dropping it silently.""",
+    ),
+    C(
         "IMP031",
         "import-launch-substitution",
         "info",

@@ -27,6 +27,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import time
 from pathlib import Path
 from typing import Any
 
@@ -35,6 +36,7 @@ from .cache_dir import cache_root, read_at_most, write_atomic
 
 SCHEMA = 1  # bump when an entry's layout changes
 MAX_ENTRY_BYTES = 64 * 1024 * 1024  # a 1000-link expansion is a few MB
+STALE_TMP_NS = 3600 * 10**9  # a write takes milliseconds: an hour-old temporary file is left over
 KEEP = 128  # entries per kind: a few robots' worth of recent edits
 KEEP_BYTES = 256 * 1024 * 1024  # and at most this much per kind (1000-link expansions are MBs each)
 _KEY = re.compile(r"[0-9a-f]{64}")
@@ -98,15 +100,20 @@ def _no_constant(name: str) -> None:
 
 
 def _prune(folder: Path) -> None:
-    """Keep the newest entries, at most :data:`KEEP` of them and :data:`KEEP_BYTES` in all (only
-    after a write, so a read never lists the folder)."""
+    """Keep the newest entries, at most :data:`KEEP` of them and :data:`KEEP_BYTES` in all, and
+    drop temporary files a killed writer left over an hour ago (only after a write, so a read
+    never lists the folder)."""
     try:
-        entries = [
-            (st.st_mtime_ns, st.st_size, e.path)
-            for e in os.scandir(folder)
-            if e.name.endswith(".json") and e.is_file(follow_symlinks=False)
-            for st in (e.stat(follow_symlinks=False),)
-        ]
+        stale = time.time_ns() - STALE_TMP_NS
+        entries = []
+        for e in os.scandir(folder):
+            if not e.is_file(follow_symlinks=False):
+                continue
+            st = e.stat(follow_symlinks=False)
+            if e.name.endswith(".json"):
+                entries.append((st.st_mtime_ns, st.st_size, e.path))
+            elif e.name.startswith(".tmp-") and st.st_mtime_ns < stale:  # a live writer's is younger
+                os.unlink(e.path)
         entries.sort(reverse=True)  # newest first
         kept = 0
         for i, (_, size, path) in enumerate(entries):

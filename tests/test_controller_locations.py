@@ -146,3 +146,33 @@ def test_spec_wrong_base_frame_is_one_frame004(tmp_path: Path) -> None:
     lines = [ln for ln in r.stdout.splitlines() + r.stderr.splitlines() if "FRAME004" in ln]
     assert len(lines) == 1, lines
     assert "base_frame_id 'base_foot'" in lines[0]
+
+
+def test_an_entry_without_a_type_is_said_to_be_unchecked_not_dropped() -> None:
+    """CTRL056: a top-level entry with ros__parameters and no type anywhere is reported once,
+    at its key (line 8, column 1 of the text below), as info; typed controllers are still read."""
+    from descgen.readers.controllers import read_controllers_text
+
+    text = """\
+controller_manager:
+  ros__parameters:
+    arm:
+      type: joint_trajectory_controller/JointTrajectoryController
+arm:
+  ros__parameters:
+    joints: [a]
+untyped:
+  ros__parameters:
+    joints: [b]
+own_type:
+  ros__parameters:
+    type: forward_command_controller/ForwardCommandController
+"""
+    controllers, _, found = read_controllers_text(text, "c.yaml")
+    assert sorted(c.name for c in controllers) == ["arm", "own_type"]
+    ctrl056 = [f for f in found if f.code == "CTRL056"]
+    assert [(f.severity, f.subject, f.where.line, f.where.col) for f in ctrl056] == [
+        ("info", "controller:untyped", 8, 1)
+    ]
+    _, _, typed_only = read_controllers_text(text.split("untyped:")[0], "c.yaml")
+    assert not [f for f in typed_only if f.code == "CTRL056"]

@@ -12,6 +12,7 @@ import hashlib
 import json
 import os
 import shutil
+import time
 from collections.abc import Iterator
 from importlib import metadata
 from pathlib import Path
@@ -80,6 +81,21 @@ def test_a_folder_keeps_its_newest_entries(cache: Path, monkeypatch: pytest.Monk
     monkeypatch.setattr(result_cache, "KEEP_BYTES", 2 * size + size // 2)  # room for two entries
     result_cache.put("probe", keys[0], 0)  # the newest now
     assert [result_cache.get("probe", k) for k in keys] == [0, None, None, None, 4]
+
+
+def test_a_killed_writers_temporary_file_goes_once_it_is_old(cache: Path) -> None:
+    """A write that died between mkstemp and rename leaves ``.tmp-*``; the next write's prune
+    removes it when it is over an hour old, and leaves a young one (a writer still at work)."""
+    folder = cache / "results" / "probe"
+    result_cache.put("probe", result_cache.key("probe", 0), 0)
+    old, young = folder / ".tmp-old", folder / ".tmp-young"
+    old.write_text("{")
+    young.write_text("{")
+    two_hours_ago = time.time_ns() - 2 * 3600 * 10**9
+    os.utime(old, ns=(two_hours_ago, two_hours_ago))
+    result_cache.put("probe", result_cache.key("probe", 1), 1)
+    assert not old.exists() and young.exists()
+    assert result_cache.get("probe", result_cache.key("probe", 0)) == 0  # entries untouched
 
 
 def test_the_key_holds_descgen_source_and_tool_versions(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -179,6 +179,23 @@ def read_controllers_file(text: str, file: str, launch_args: Mapping[str, str] |
         if "type" in own[name] and str(name) not in types:
             types[str(name)] = str(own[name]["type"])
             type_marks[str(name)] = _marks(doc, {"type": own[name]["type"]}, (name, "ros__parameters"))
+    for name in own:
+        if str(name) not in types:
+            # a spawner may give the type (--controller-type), or the file may also hold another
+            # node's parameters: not an error, but nothing below checks this entry, so say so
+            shape.found.append(
+                Finding(
+                    "CTRL056",
+                    "info",
+                    f"'{name}' has ros__parameters but no type (neither its own 'type' nor "
+                    f"controller_manager.ros__parameters.{name}.type): it is not read as a controller and "
+                    "nothing in it is checked",
+                    f"give its type ({name}.ros__parameters.type), or ignore this for another node's "
+                    "parameters or a spawner that passes --controller-type",
+                    f"controller:{name}",
+                    doc.where((name,), key=True),
+                )
+            )
     controllers = []
     for name, type_ in types.items():
         params = own.get(name, {})
