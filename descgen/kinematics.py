@@ -88,17 +88,12 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Mat
         return {}
     parts = _parts(robot)
     poses: dict[str, Mat] = {root: np.eye(4)}
-    todo = [root]
-    while todo:
-        parent = todo.pop()
-        for j in robot.child_joints(parent):
-            if j.child is None or j.child in poses:
-                continue
-            known = parts.get(id(j))
-            value = values.get(j.name, 0.0)
-            local = joint_transform(j, value) if known is None else known[0] @ _motion(j, value, known[1])
-            poses[j.child] = poses[parent] @ local
-            todo.append(j.child)
+    for j in robot.tree_joints():
+        assert j.parent is not None and j.child is not None  # tree_joints yields only linked joints
+        known = parts.get(id(j))
+        value = values.get(j.name, 0.0)
+        local = joint_transform(j, value) if known is None else known[0] @ _motion(j, value, known[1])
+        poses[j.child] = poses[j.parent] @ local
     return poses
 
 

@@ -633,6 +633,24 @@ class Robot:
         roots = self.roots()
         return roots[0] if len(roots) == 1 else None
 
+    def tree_joints(self) -> Iterator[Joint]:
+        """The joints that reach a new link from the root, each parent before its child (depth
+        first, a link's joints in file order): what forward kinematics composes. Safe on cycles
+        and on links reached twice (the first joint wins); nothing without a single root."""
+        root = self.root()
+        if root is None:
+            return
+        seen = {root}
+        todo = [root]
+        while todo:
+            parent = todo.pop()
+            for j in self.child_joints(parent):
+                if j.child is None or j.child in seen:
+                    continue
+                seen.add(j.child)
+                yield j
+                todo.append(j.child)
+
     def descendants(self, link: str) -> list[str]:
         """Every link below ``link``, nearest first; safe on cycles."""
         out: list[str] = []

@@ -46,14 +46,9 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Fra
     if root is None:
         return {}
     poses: dict[str, Frame] = {root: ORIGIN}
-    todo = [root]
-    while todo:
-        parent = todo.pop()
-        for j in robot.child_joints(parent):
-            if j.child is None or j.child in poses:
-                continue
-            poses[j.child] = compose(poses[parent], joint_frame(j, values.get(j.name, 0.0)))
-            todo.append(j.child)
+    for j in robot.tree_joints():
+        assert j.parent is not None and j.child is not None  # tree_joints yields only linked joints
+        poses[j.child] = compose(poses[j.parent], joint_frame(j, values.get(j.name, 0.0)))
     return poses
 
 

@@ -12,6 +12,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+import pytest
+
 from descgen.findings import Finding, InputError
 from descgen.spec import load_spec
 
@@ -117,3 +119,16 @@ JAZZY_IMU_INTERFACES = [
     "linear_acceleration.y",
     "linear_acceleration.z",
 ]
+
+
+def pint_si(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> float | str:
+    """The SI value of ``text`` (or the refusal code) with descgen's pint-free path switched
+    off, so pint decides: the oracle for units._simple_si."""
+    from descgen import units
+
+    with monkeypatch.context() as m:
+        m.setattr(units, "_simple_si", lambda _text, _kind: None)
+        try:
+            return units._to_si(text, kind)
+        except units.QuantityError as exc:
+            return exc.code

@@ -12,17 +12,7 @@ import pytest
 
 from descgen import units
 from tests.conftest import EXAMPLE, ROOT
-
-
-def _slow(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> float | str:
-    """The value (or the refusal code) with every pint-free path switched off: pint decides."""
-    with monkeypatch.context() as m:
-        m.setattr(units, "_simple_si", lambda _text, _kind: None)
-        try:
-            return units._to_si(text, kind)
-        except units.QuantityError as exc:
-            return exc.code
-
+from tests.helpers import pint_si
 
 # (text, kind, whether the pint-free path must answer it)
 CASES = [
@@ -75,7 +65,7 @@ CASES = [
 def test_arithmetic_is_pints(text: str, kind: str, fast: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     got = units._simple_si(text, kind)
     assert (got is not None) == fast, text
-    slow = _slow(text, kind, monkeypatch)
+    slow = pint_si(text, kind, monkeypatch)
     if got is not None:
         assert repr(got) == repr(slow), text  # repr: 0.175 vs 0.17500000000000002, 0.0 vs -0.0
     try:
@@ -112,7 +102,7 @@ def test_random_arithmetic_is_pints(monkeypatch: pytest.MonkeyPatch) -> None:
         if got is None:
             continue
         answered += 1
-        assert repr(got) == repr(_slow(text, kind, monkeypatch)), text
+        assert repr(got) == repr(pint_si(text, kind, monkeypatch)), text
     assert answered > 100  # the pint-free path really ran on a good share of them
 
 

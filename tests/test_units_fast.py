@@ -6,18 +6,9 @@ from __future__ import annotations
 import pytest
 
 from descgen import cache_dir, units
+from tests.helpers import pint_si
 
 NUMBERS = ["0", "-0", "1", "300", "-90", "0.175", "19.1", "1e-3", "2.5E+2", "+7", "123456789012345", "0.1"]
-
-
-def _slow(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> float | str:
-    """The value (or the refusal code) with the fast path switched off: pint decides."""
-    with monkeypatch.context() as m:
-        m.setattr(units, "_simple_si", lambda _text, _kind: None)
-        try:
-            return units._to_si(text, kind)
-        except units.QuantityError as exc:
-            return exc.code
 
 
 @pytest.mark.parametrize("unit", sorted(units._SIMPLE_UNITS))
@@ -27,7 +18,7 @@ def test_every_simple_unit_converts_exactly_as_pint(unit: str, monkeypatch: pyte
         for text in (f"{number} {unit}", f"{number}{unit}", f"  {number}  {unit} "):
             fast = units._simple_si(text, kind)
             assert fast is not None, text
-            slow = _slow(text, kind, monkeypatch)
+            slow = pint_si(text, kind, monkeypatch)
             assert repr(fast) == repr(slow), text  # repr: 0.175 vs 0.17500000000000002, 0.0 vs -0.0
 
 
@@ -60,14 +51,14 @@ def test_the_factor_table_is_pints(unit: str) -> None:
 )
 def test_anything_else_is_left_to_pint(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
     if units._SIMPLE.fullmatch(text.strip()) and units._SIMPLE_UNITS.get(text.split()[-1], ("",))[0] == kind:
-        assert units._simple_si(text, kind) == _slow(text, kind, monkeypatch)
+        assert units._simple_si(text, kind) == pint_si(text, kind, monkeypatch)
         return
     assert units._simple_si(text, kind) is None
     try:
         got: float | str = units._to_si(text, kind)
     except units.QuantityError as exc:
         got = exc.code
-    assert got == _slow(text, kind, monkeypatch)
+    assert got == pint_si(text, kind, monkeypatch)
 
 
 def test_the_registry_from_the_cache_converts_as_a_fresh_one(tmp_path, monkeypatch: pytest.MonkeyPatch) -> None:

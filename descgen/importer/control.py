@@ -183,17 +183,9 @@ def _joint_kind(robot: m.Robot, joint: str, iface: str) -> str:
 
 
 def _joint_iface(w: SpecWriter, robot: m.Robot, joint: str, e: etree._Element) -> str | Data:
-    params = _params(e)
-    if not params and e.get("data_type") is None:
-        return e.get("name", "")
-    out: Data = {"name": e.get("name", "")}
-    if e.get("data_type") is not None:
-        out["data_type"] = e.get("data_type")
-    kind = _joint_kind(robot, joint, out["name"]) if params else ""
-    for key in ("min", "max", "initial_value"):
-        if key in params:
-            out[key] = w.q(float(params[key]), kind)
-    return out
+    """A joint's interface: its min/max/initial_value as quantities of the joint's kind."""
+    kind = _joint_kind(robot, joint, e.get("name", "")) if _params(e) else ""
+    return _iface(e, lambda v: w.q(v, kind), ("min", "max", "initial_value"))
 
 
 def _interfaces(
@@ -209,16 +201,22 @@ def _interfaces(
     return out
 
 
-def _iface(e: etree._Element) -> str | Data:
+def _iface(
+    e: etree._Element,
+    value: Callable[[float], object] = number,
+    keys: tuple[str, ...] = ("initial_value", "min", "max"),
+) -> str | Data:
+    """An interface as the spec writes it: the bare name, or name, data_type and ``keys``
+    (each through ``value``) for one that has parameters or a data type."""
     params = _params(e)
     if not params and e.get("data_type") is None:
         return e.get("name", "")
     out: Data = {"name": e.get("name", "")}
     if e.get("data_type") is not None:
         out["data_type"] = e.get("data_type")
-    for key in ("initial_value", "min", "max"):
+    for key in keys:
         if key in params:
-            out[key] = number(float(params[key]))
+            out[key] = value(float(params[key]))
     return out
 
 
