@@ -15,7 +15,7 @@ import math
 from . import principal
 from .model import Box, Collision, Cylinder, Link, Robot, Sphere, Visual
 from .record import record
-from .rigid import Frame, Vec, apply, compose, dot, frame, norm, rotate, rpy_rot
+from .rigid import Frame, Vec, apply, compose, frame, norm, rotate, rpy_rot
 
 _SIDES = 64  # a cylinder's rims become 64-gons drawn around the circle, so they contain it
 _STEP = 2 * math.pi / _SIDES
@@ -129,15 +129,29 @@ def bounding_hulls(link: Link) -> list[Hull] | None:
 def farthest_from_axis(hulls: list[Hull], point: Vec, axis: Vec, indices: range = range(_SIDES)) -> float:
     """The largest distance from the line through ``point`` along unit ``axis`` to any
     point of the hulls (only rim corners numbered ``indices``: a lower bound otherwise)."""
+    # written out (the audit's hottest loop): the same operations, in the same order, as
+    # norm(d - dot(d, axis) * axis) with d = p - point, except that the square root is taken
+    # once of the largest sum of squares, which is the same float (sqrt is monotone)
+    px, py, pz = point
+    ax, ay, az = axis
     best = 0.0
     for h in hulls:
-        far = 0.0
-        for p in corners(h, indices):
-            d = (p[0] - point[0], p[1] - point[1], p[2] - point[2])
-            along = dot(d, axis)
-            far = max(far, norm((d[0] - along * axis[0], d[1] - along * axis[1], d[2] - along * axis[2])))
-        best = max(best, far + h.pad)
+        far2 = 0.0
+        for x, y, z in corners(h, indices):
+            dx, dy, dz = x - px, y - py, z - pz
+            along = dx * ax + dy * ay + dz * az
+            ex, ey, ez = dx - along * ax, dy - along * ay, dz - along * az
+            q = ex * ex + ey * ey + ez * ez
+            if q > far2:  # max(far2, q): a nan distance is passed over, as max() does
+                far2 = q
+        best = max(best, math.sqrt(far2) + h.pad)
     return best
+
+
+def distinct(hulls: list[Hull]) -> list[Hull]:
+    """``hulls`` without repeats (a visual and a collision of the same shape and origin): a
+    repeated hull changes no farthest distance, and each costs a pass over its points."""
+    return list(dict.fromkeys(hulls)) if len(hulls) > 1 else hulls
 
 
 _SPANS: list[tuple[Robot, float]] = []  # the spans of the last few robots (INER011 and JOINT020 ask)
@@ -154,6 +168,23 @@ def robot_span(robot: Robot) -> float:
     _SPANS.insert(0, (robot, span))
     del _SPANS[4:]
     return span
+
+
+def span_floor(robot: Robot) -> float:
+    """A lower bound on :func:`robot_span` that poses no shape: the diagonal of the box
+    around the link frames alone (forward kinematics is shared with the other rules). Never
+    more than the span, in floats too: the span's box holds these same points (so its least
+    and greatest coordinates are at least as far apart, min and max being exact), and a
+    difference, a square, a sum and a square root each round monotonically."""
+    from .zero_pose import at_zero
+
+    poses = at_zero(robot)
+    if not poses:
+        return 0.0
+    ts = [pose[1] for pose in poses.values()]
+    lo = [min(t[k] for t in ts) for k in range(3)]
+    hi = [max(t[k] for t in ts) for k in range(3)]
+    return norm((hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]))
 
 
 def _span(robot: Robot) -> float:
@@ -203,6 +234,7 @@ def moment_by_shapes(link: Link) -> MomentBound | None:
         return None
     eig, vecs = principal.axes(i.inertia)  # once per tensor, shared with INER003/INER004
     turn = rpy_rot(i.origin.rpy)  # the tensor is written in the inertial frame
+    hulls = distinct(hulls)
     worst: MomentBound | None = None
     for k in range(3):
         reach = farthest_from_axis(hulls, i.origin.xyz, rotate(turn, vecs[k]))
@@ -224,6 +256,7 @@ def within_shapes(link: Link, hulls: list[Hull], margin: float) -> bool:
         return True
     eig, vecs = principal.axes(i.inertia)
     turn = rpy_rot(i.origin.rpy)
+    hulls = distinct(hulls)
     for k in range(3):
         reach = farthest_from_axis(hulls, i.origin.xyz, rotate(turn, vecs[k]), _SAMPLED)
         bound = i.mass * reach**2

@@ -21,7 +21,7 @@ import os
 import posixpath
 import re
 import stat
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -153,6 +153,14 @@ def mesh_status(
     and the file each found one is (for rules that read meshes). A relative name may not leave
     the description's package; ``package://`` is searched in ``package_paths``, then beside
     the description's folder (the package it is in, and its siblings)."""
+    return resolve_names(_mesh_names(robot), description, package_paths)
+
+
+def resolve_names(
+    names: Iterable[str], description: Path, package_paths: Sequence[Path]
+) -> tuple[dict[str, MeshState], dict[str, Path]]:
+    """:func:`mesh_status` for mesh filenames as written in ``description`` (the findings
+    cache resolves the names it recorded again, descgen/audit/findings_cache.py)."""
     status: dict[str, MeshState] = {}
     files: dict[str, Path] = {}
     base = description.resolve().parent
@@ -160,7 +168,7 @@ def mesh_status(
     root = package_root(base)  # once per description, not per mesh
     packages: dict[str, Path | None] = {}
     folders: dict[str, str] = {}
-    for name in _mesh_names(robot):
+    for name in names:
         if name in status:
             continue
         r = resolve(name, base, root, search, packages, folders)

@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .findings import InputError
-from .model import Robot, Vec3
+from .model import Collision, Link, Mesh, Robot, Vec3, Visual
 from .record import record
 from .safeio import MIB, read_bounded
 
@@ -381,6 +381,34 @@ def facts_of_robot(robot: Robot) -> dict[str, MeshFacts]:
     with _LOCK:
         _ROBOT_FACTS.insert(0, (robot, out))
         del _ROBOT_FACTS[4:]
+    return out
+
+
+MeshShape = tuple[Link, Visual | Collision, Mesh, MeshFacts]
+_ROBOT_SHAPES: list[tuple[Robot, list[MeshShape]]] = []  # the last few robots' measured mesh shapes
+
+
+def mesh_shapes(robot: Robot) -> list[MeshShape]:
+    """(link, visual or collision, its mesh, the mesh's facts) for every shape whose mesh
+    was measured, in link and shape order; gathered once per robot object for the rules
+    that all walk them (do not change the list)."""
+    with _LOCK:
+        for seen, shapes in _ROBOT_SHAPES:
+            if seen is robot:
+                return shapes
+    facts = facts_of_robot(robot)
+    out: list[MeshShape] = []
+    if facts:
+        for lk in robot.links:
+            for shape in lk.shapes():
+                g = shape.geometry
+                if isinstance(g, Mesh):
+                    found = facts.get(g.filename)
+                    if found is not None:
+                        out.append((lk, shape, g, found))
+    with _LOCK:
+        _ROBOT_SHAPES.insert(0, (robot, out))
+        del _ROBOT_SHAPES[4:]
     return out
 
 

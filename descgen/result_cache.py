@@ -78,8 +78,12 @@ def get(kind: str, k: str) -> Any:
     return doc.get("value")
 
 
-def put(kind: str, k: str, value: object) -> None:
-    """Store ``value`` (JSON-able) under key ``k``; silently nothing when caching is off or fails."""
+def put(kind: str, k: str, value: object, keep: int | None = None, most_bytes: int | None = None) -> None:
+    """Store ``value`` (JSON-able) under key ``k``, keeping the newest ``keep`` entries of the
+    kind (:data:`KEEP` when None); an entry over ``most_bytes`` (:data:`MAX_ENTRY_BYTES`) is not
+    stored. Silently nothing when caching is off or fails."""
+    keep = KEEP if keep is None else keep
+    most_bytes = MAX_ENTRY_BYTES if most_bytes is None else min(most_bytes, MAX_ENTRY_BYTES)
     folder = _folder(kind)
     if folder is None or not _KEY.fullmatch(k):
         return
@@ -89,24 +93,33 @@ def put(kind: str, k: str, value: object) -> None:
         )
     except (TypeError, ValueError):
         return
-    if len(text.encode("utf-8")) > MAX_ENTRY_BYTES:
+    if len(text.encode("utf-8")) > most_bytes:
         return
     write_atomic(folder / f"{k}.json", text)
-    _prune(folder)
+    _prune(folder, keep, most_bytes)
 
 
 def _no_constant(name: str) -> None:
     raise ValueError(f"{name} is not a number descgen writes")
 
 
-def _prune(folder: Path) -> None:
-    """Keep the newest entries, at most :data:`KEEP` of them and :data:`KEEP_BYTES` in all, and
+def _prune(folder: Path, keep: int, most_bytes: int) -> None:
+    """Keep the newest entries, at most ``keep`` of them and :data:`KEEP_BYTES` in all, and
     drop temporary files a killed writer left over an hour ago (only after a write, so a read
-    never lists the folder)."""
+    never lists the folder). Entries are stat()ed only when some may have to go (too many, or
+    possibly too large at ``most_bytes`` each, or a temporary file): an audit writes one small
+    entry per description, and stat()ing thousands after each would cost more than the audit."""
     try:
+        listed = list(os.scandir(folder))
+        if (
+            len(listed) <= keep
+            and len(listed) * most_bytes <= KEEP_BYTES
+            and not any(e.name.startswith(".tmp-") for e in listed)
+        ):
+            return
         stale = time.time_ns() - STALE_TMP_NS
         entries = []
-        for e in os.scandir(folder):
+        for e in listed:
             if not e.is_file(follow_symlinks=False):
                 continue
             st = e.stat(follow_symlinks=False)
@@ -118,7 +131,7 @@ def _prune(folder: Path) -> None:
         kept = 0
         for i, (_, size, path) in enumerate(entries):
             kept += size
-            if i >= KEEP or kept > KEEP_BYTES:
+            if i >= keep or kept > KEEP_BYTES:
                 os.unlink(path)
     except OSError:
         return

@@ -7,14 +7,18 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .. import mesh_paths
 from ..findings import Finding, Where
 from ..model import MeshState, Robot, Ros2Control
-from ..readers.srdf import read_srdf_text
-from ..readers.urdf import read_urdf_text
 from ..safeio import check_file, read_bounded, read_head
-from .registry import run
+
+if TYPE_CHECKING:
+    from . import findings_cache
+
+# The readers (lxml) and the rules are imported where they are used: an audit answered from the
+# findings cache (descgen/audit/findings_cache.py) needs neither.
 
 
 @dataclass(frozen=True)
@@ -65,6 +69,8 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
         else:
             data = read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
+        from ..readers.urdf import read_urdf_text
+
         robot, found = read_urdf_text(data, display, sources)
     robot, more = with_given_files(robot, options)
     found += more
@@ -80,6 +86,8 @@ def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Findin
     place of its own, and what their readers reported."""
     found: list[Finding] = []
     if options.srdf is not None:
+        from ..readers.srdf import read_srdf_text
+
         semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
@@ -114,6 +122,27 @@ def _read(path: Path, what: str) -> bytes:
 
 
 def audit(path: Path, options: Options = Options()) -> list[Finding]:
-    """Every finding for one description: what its readers reported, then every rule."""
+    """Every finding for one description: what its readers reported, then every rule; for a
+    plain URDF audited again unchanged, last run's (descgen/audit/findings_cache.py)."""
+    from . import findings_cache
+    from .registry import run
+
+    kept = _cache_inputs(path, options)
+    if kept is not None:
+        hit = findings_cache.get(kept)
+        if hit is not None:
+            return hit
     robot, found = load_description(path, options)
-    return found + run(robot)
+    found += run(robot)
+    if kept is not None:
+        findings_cache.put(kept, robot, found, _cache_inputs(path, options))
+    return found
+
+
+def _cache_inputs(path: Path, options: Options) -> findings_cache.Inputs | None:
+    """The findings cache's key for this audit; None for what it does not keep."""
+    from . import findings_cache
+
+    if options.moveit_config is not None or kind_of(path) != "urdf":
+        return None
+    return findings_cache.inputs(path, options.srdf, options.controllers, options.launch_args, options.package_paths)

@@ -48,7 +48,9 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
                 )
             ]
         )
-    if b"<!DOCTYPE" in data[:65536].upper():
+    head = data[:65536]
+    # upper-casing 64 kB costs more than the two searches that say whether it can matter
+    if (b"<!d" in head or b"<!D" in head) and b"<!DOCTYPE" in head.upper():
         line = data[: data.upper().index(b"<!DOCTYPE")].count(b"\n") + 1
         raise InputError(
             [
@@ -101,17 +103,28 @@ def _one_line(message: str) -> str:
     return _LIBXML_AT.sub("", " ".join(message.split())) or "parse error"
 
 
+_PARSED: dict[str, tuple[float, ...]] = {}
+_NUMBERS: dict[str, float] = {}
+_POSES: dict[tuple[str | None, str | None], m.Pose] = {}
+_KEPT = 200_000  # entries: a few MB; a file of random numbers must not grow them without end
+
+
 class _Reader:
     def __init__(self, file: str, located: dict[etree._Element, Where] | None = None) -> None:
         self.file = file
         self.located = located or {}  # where each element of an expanded Xacro was written
         self.findings: list[Finding] = []
         # attribute text -> its numbers, when valid: descriptions repeat "0 0 0", "1 1 1", "0 0 1"
-        # (a generated one most of its values), and a lookup is several times cheaper than float()
-        self.parsed: dict[str, tuple[float, ...]] = {}
-        self.numbers: dict[str, float] = {}  # the same for one-number attributes (mass, ixx, ...)
+        # (a generated one most of its values), and a lookup is several times cheaper than float();
+        # kept across files (what a text means does not depend on the file), within a bound
+        if len(_PARSED) + len(_NUMBERS) + len(_POSES) > _KEPT:
+            _PARSED.clear()
+            _NUMBERS.clear()
+            _POSES.clear()
+        self.parsed = _PARSED
+        self.numbers = _NUMBERS  # the same for one-number attributes (mass, ixx, ...)
         # (xyz text, rpy text) -> its Pose: origins repeat too, and a Pose is immutable
-        self.poses: dict[tuple[str | None, str | None], m.Pose] = {}
+        self.poses = _POSES
 
     def where(self, e: etree._Element) -> Where:
         if self.located:

@@ -17,6 +17,7 @@ from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
 from . import context, header
+from .escaping import TextEscaping, escape_text
 from .formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
 
 XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
@@ -32,10 +33,25 @@ def _bytecode_cache() -> jinja2.BytecodeCache | None:
     own __pycache__: compiling the 40-odd templates is half of a warm ``check``. jinja2 keys an
     entry by the template's name and file and recompiles when the source's checksum differs;
     None (compile every time) when caching is off or the folder cannot be made."""
-    folder = cache_folder(f"jinja2-{jinja2.__version__}")
+    # the compiled code calls Environment.escape_text (escaping.py): a folder of its own, so
+    # that code compiled by another code generator (or this one) is never loaded by the other
+    folder = cache_folder(f"jinja2-{jinja2.__version__}-text-escaping")
     if folder is None:
         return None
     return jinja2.FileSystemBytecodeCache(str(folder))
+
+
+class _Environment(jinja2.Environment):
+    code_generator_class = TextEscaping
+    escape_text = staticmethod(escape_text)
+
+
+class _SandboxedEnvironment(ImmutableSandboxedEnvironment):
+    """The sandbox checks what a template reaches for at run time (attributes, calls); the
+    compiled output calls escape_text directly, as it calls markupsafe's escape otherwise."""
+
+    code_generator_class = TextEscaping
+    escape_text = staticmethod(escape_text)
 
 
 def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja2.Environment:
@@ -48,7 +64,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     if templates is not None:
         loaders.append(jinja2.FileSystemLoader(str(templates)))
     loaders.append(jinja2.FileSystemLoader(str(default_templates())))
-    make = ImmutableSandboxedEnvironment if sandboxed else jinja2.Environment
+    make = _SandboxedEnvironment if sandboxed else _Environment
     env = make(
         loader=jinja2.ChoiceLoader(loaders),
         bytecode_cache=_bytecode_cache(),

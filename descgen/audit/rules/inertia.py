@@ -6,7 +6,14 @@ import math
 from collections.abc import Callable, Iterator
 
 from ... import principal
-from ...extent import bounding_hulls, half_trace_by_span, moment_by_shapes, robot_span, within_shapes
+from ...extent import (
+    bounding_hulls,
+    half_trace_by_span,
+    moment_by_shapes,
+    robot_span,
+    span_floor,
+    within_shapes,
+)
 from ...findings import Finding, Severity
 from ...model import Inertia, Link, Robot
 from ...physics import moving_links, own_bodies, welded_count
@@ -317,6 +324,7 @@ def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
     """
     moving = own_bodies(robot)
     span: list[float] = []  # the robot's span, computed once and only when a link needs it
+    floor: list[float] = []  # a lower bound on it that poses no shape (extent.span_floor): most links stop there
     for lk in robot.links:
         i = lk.inertial
         if i is None or i.inertia is None or i.mass is None or i.mass <= MASSLESS:
@@ -334,6 +342,11 @@ def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
                 "from the axis)"
             )
         else:
+            if not floor:
+                floor.append(span_floor(robot))
+            rough = half_trace_by_span(lk, floor[0]) if math.isfinite(floor[0]) else None
+            if rough is not None and rough.ratio <= SPAN_MARGIN:
+                continue  # within the margin at a span no larger than the robot's: so within at its span
             if not span:
                 span.append(robot_span(robot))
             found = half_trace_by_span(lk, span[0])

@@ -10,7 +10,7 @@ import math
 from collections.abc import Iterator
 
 from ...findings import Finding
-from ...meshes import MeshFacts, box_in_metres, facts_of_robot, size_in_metres
+from ...meshes import MeshFacts, MeshShape, box_in_metres, facts_of_robot, mesh_shapes, size_in_metres
 from ...model import Collision, Link, Mesh, Robot, Visual
 from ...physics import PLACEHOLDER_MASS, dims, robot_scale
 from ...rigid import Vec, frame, norm, placed_box
@@ -26,15 +26,8 @@ WATER = 1000.0  # kg/m^3: the side of a cube of water of the link's mass is one 
 _FACTORS = ((1000.0, "millimetres"), (100.0, "centimetres"), (1 / 0.0254, "inches"), (0.001, "metres scaled as mm"))
 
 
-def _shapes_with_facts(robot: Robot) -> Iterator[tuple[Link, Visual | Collision, Mesh, MeshFacts]]:
-    facts = facts_of_robot(robot)
-    if not facts:
-        return
-    for lk in robot.links:
-        for shape in lk.shapes():
-            g = shape.geometry
-            if isinstance(g, Mesh) and g.filename in facts:
-                yield lk, shape, g, facts[g.filename]
+def _shapes_with_facts(robot: Robot) -> list[MeshShape]:
+    return mesh_shapes(robot)  # gathered once per robot for the rules below
 
 
 def _kind(shape: Visual | Collision) -> str:
@@ -62,8 +55,10 @@ def mesh_size_mismatch(robot: Robot) -> Iterator[Finding]:
     the wrong size. Every parser accepts all of them.
     """
     for lk, shape, mesh, facts in _shapes_with_facts(robot):
+        if mesh.size is None:
+            continue  # the common case: no stated size (so no need to scale the box)
         size = size_in_metres(facts, mesh.scale)
-        if mesh.size is None or size is None:
+        if size is None:
             continue
         tol = mesh.size_tolerance if mesh.size_tolerance is not None else 0.001
         if all(abs(a - b) <= tol for a, b in zip(size, mesh.size, strict=True)):
@@ -124,8 +119,10 @@ def mesh_in_wrong_unit(robot: Robot) -> Iterator[Finding]:
     no parser notices.
     """
     for lk, shape, mesh, facts in _shapes_with_facts(robot):
+        if mesh.size is not None:
+            continue
         size = size_in_metres(facts, mesh.scale)
-        if mesh.size is not None or size is None or max(size) <= FLOOR:
+        if size is None or max(size) <= FLOOR:
             continue
         evidence = _evidence(robot, lk)
         longest = max(length for length, _ in evidence)
@@ -214,12 +211,12 @@ def _facts_of(shape: Visual | Collision, facts: dict[str, MeshFacts]) -> MeshFac
 def _union(boxes: list[Box3 | None]) -> Box3 | None:
     if not boxes or any(b is None for b in boxes):
         return None  # a shape we cannot place: no judgement
+    if len(boxes) == 1:
+        return boxes[0]  # what min and max of one value give: the value itself
     lows = [b[0] for b in boxes if b is not None]
     highs = [b[1] for b in boxes if b is not None]
-    return (
-        (min(v[0] for v in lows), min(v[1] for v in lows), min(v[2] for v in lows)),
-        (max(v[0] for v in highs), max(v[1] for v in highs), max(v[2] for v in highs)),
-    )
+    (lx, ly, lz), (hx, hy, hz) = zip(*lows, strict=True), zip(*highs, strict=True)
+    return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))
 
 
 def _sub(a: Vec, b: Vec) -> Vec:
