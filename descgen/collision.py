@@ -10,7 +10,12 @@ collision geometry of the expanded URDF:
 - ``Never``: in collision in none of ``samples`` random configurations.
 
 The samples come from numpy's PCG64 seeded with ``seed``, uniform within each joint's
-limits, so the same spec gives the same pairs on any machine. Pairs the user disabled in the
+limits, so the same spec gives the same pairs on any machine. A URDF ``<mimic>`` follower is
+not a free variable: pinocchio loads it as an independent joint, so every sample and the
+default state overwrite it with ``multiplier * leader + offset`` (chains resolved to the
+driving joint, the follower not clamped to its own limits), as MoveIt's
+``RobotModel::getVariableRandomPositions`` / ``getVariableDefaultPositions`` do through
+``updateMimicJoints`` (moveit2 jazzy, robot_model.cpp). Pairs the user disabled in the
 spec keep their own reason (the SRDF template lists them after these). pinocchio is an
 optional extra (``descgen[collision]``); without it a spec that asks for a matrix is refused
 with GEN070 rather than silently getting none.
@@ -32,6 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from . import mimic
 from .findings import Finding, InputError, Where
 from .model import CollisionMatrix, DisabledPair, MatrixSettings, Robot
 
@@ -39,7 +45,7 @@ if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses
     import numpy as np  # matrix and must not pay numpy's import (~60 ms) for it
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
-ALGORITHM = "descgen-collision-1"
+ALGORITHM = "descgen-collision-2"  # 2: mimic followers follow their leaders
 COMPUTED_REASONS = ("Adjacent", "Default", "Always", "Never")
 _CACHE_LINE = re.compile(r"collision matrix input-sha256=([0-9a-f]{64})")
 
@@ -154,6 +160,7 @@ class _Scene:
     geom: Any
     gdata: Any
     link_pairs: dict[frozenset[str], list[int]]  # link pair -> its geometry pair indices
+    mimics: tuple[mimic.Relation, ...] = ()  # followers pinocchio would move on their own
 
 
 def _refuse(message: str, hint: str, robot: Robot) -> InputError:
@@ -197,13 +204,19 @@ def load_scene(robot: Robot, urdf: str, meshes: Mapping[str, bytes], package: st
     gdata = pin.GeometryData(geom)
     for req in gdata.collisionRequests:
         req.security_margin = padding
-    return _Scene(pin, model, model.createData(), geom, gdata, link_pairs)
+    # only followers pinocchio knows as one-variable joints, driven by one: a follower with no
+    # driver (a cycle, a missing leader) stays a free joint, as in MoveIt (which drops the mimic)
+    known = {model.names[j] for j in range(1, model.njoints) if model.joints[j].nv == 1}
+    mimics = tuple(r for r in mimic.analyse(robot).relations.values() if r.follower in known and r.leader in known)
+    return _Scene(pin, model, model.createData(), geom, gdata, link_pairs, mimics)
 
 
 def configuration(scene: _Scene, values: Mapping[str, float]) -> np.ndarray:
-    """pinocchio's q for joint values by name (others at zero; continuous joints as cos, sin)."""
+    """pinocchio's q for joint values by name (others at zero; continuous joints as cos, sin;
+    a mimic follower from its leader's value, whatever ``values`` gives it)."""
     import numpy as np
 
+    values = {**values, **{r.follower: r.value(values.get(r.leader, 0.0)) for r in scene.mimics}}
     q = np.array(scene.pin.neutral(scene.model))
     for jid in range(1, scene.model.njoints):
         name = scene.model.names[jid]
@@ -218,23 +231,39 @@ def configuration(scene: _Scene, values: Mapping[str, float]) -> np.ndarray:
 
 
 def random_configurations(scene: _Scene, samples: int, seed: int) -> np.ndarray:
-    """``samples`` rows of q, each joint uniform within its limits (continuous: full turn)."""
+    """``samples`` rows of q, each driving joint uniform within its limits (continuous: full
+    turn), each mimic follower ``multiplier * leader + offset``."""
     import numpy as np
 
     rng = np.random.default_rng(seed)
     model = scene.model
     qs = np.tile(np.array(scene.pin.neutral(model)), (samples, 1))
+    drawn: dict[str, np.ndarray] = {}  # joint name -> its values (continuous: the angle)
     for jid in range(1, model.njoints):
         jm = model.joints[jid]
+        # a follower draws too, then is overwritten: the stream of every other joint, and so a
+        # robot without mimic joints, gets the same numbers as before followers were handled
         u = rng.random(samples)
         if jm.nq == 2:
-            angle = -math.pi + 2 * math.pi * u
-            qs[:, jm.idx_q] = np.cos(angle)
-            qs[:, jm.idx_q + 1] = np.sin(angle)
+            drawn[model.names[jid]] = angle = -math.pi + 2 * math.pi * u
+            _put(qs, jm, angle)
         elif jm.nq == 1:
             lo, hi = float(model.lowerPositionLimit[jm.idx_q]), float(model.upperPositionLimit[jm.idx_q])
-            qs[:, jm.idx_q] = lo + (hi - lo) * u
+            drawn[model.names[jid]] = qs[:, jm.idx_q] = lo + (hi - lo) * u
+    for r in scene.mimics:  # leaders are driving joints (chains resolved), so order is free
+        _put(qs, model.joints[model.getJointId(r.follower)], r.multiplier * drawn[r.leader] + r.offset)
     return qs
+
+
+def _put(qs: np.ndarray, jm: Any, values: np.ndarray) -> None:
+    """One joint's column(s) of ``qs``: the value, or cos and sin for a continuous joint."""
+    import numpy as np
+
+    if jm.nq == 2:
+        qs[:, jm.idx_q] = np.cos(values)
+        qs[:, jm.idx_q + 1] = np.sin(values)
+    else:
+        qs[:, jm.idx_q] = values
 
 
 def activate(scene: _Scene, pairs: list[frozenset[str]]) -> None:

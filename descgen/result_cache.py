@@ -18,12 +18,14 @@ One JSON file per result under ``<cache>/results/<kind>/`` (descgen/cache_dir.py
 cache folder, ``DESCGEN_CACHE_DIR=`` switches caching off, as the test suite does). An entry
 is data (docs/security.md): read with a size bound, its schema, kind and key must match, and
 each user checks the value's shape; anything else is a miss. Writes go through a temporary
-file renamed into place. A folder holding more than :data:`KEEP` entries drops its oldest.
+file renamed into place. A folder holding more than :data:`KEEP` entries drops those used
+least recently (a hit touches its entry).
 Nothing here raises: a cache that cannot be read or written only costs time.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -61,12 +63,14 @@ def _folder(kind: str) -> Path | None:
     return None if root is None or not _KIND.fullmatch(kind) else root / "results" / kind
 
 
-def get(kind: str, k: str) -> Any:
-    """The value stored for key ``k``, or None on a miss (or an entry not as :func:`put` wrote it)."""
+def get(kind: str, k: str, most_bytes: int | None = None) -> Any:
+    """The value stored for key ``k``, or None on a miss (or an entry not as :func:`put` wrote
+    it; one over ``most_bytes``, the bound its :func:`put` was given, is not read)."""
     folder = _folder(kind)
     if folder is None or not _KEY.fullmatch(k):
         return None
-    raw = read_at_most(folder / f"{k}.json", MAX_ENTRY_BYTES)
+    entry = folder / f"{k}.json"
+    raw = read_at_most(entry, MAX_ENTRY_BYTES if most_bytes is None else min(most_bytes, MAX_ENTRY_BYTES))
     if raw is None:
         return None
     try:
@@ -75,6 +79,8 @@ def get(kind: str, k: str) -> Any:
         return None
     if not isinstance(doc, dict) or doc.get("schema") != SCHEMA or doc.get("kind") != kind or doc.get("key") != k:
         return None
+    with contextlib.suppress(OSError):  # a read-only cache still answers
+        os.utime(entry)  # used now: the prune keeps the entries used last, not those written last
     return doc.get("value")
 
 

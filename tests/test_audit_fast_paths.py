@@ -5,8 +5,7 @@ Oracles: the replaced code, written out again here (the farthest-point loop, the
 walk), the full robot span (extent._span, which the floor must never exceed), INER011 run
 with the floor switched off (every link then goes to the full span, as before), and the URDF
 reader with empty number caches (what each file got before the caches were kept across
-files), and the thread count of a fresh process that imports numpy alone (/proc/self/task).
-Nothing is timed.
+files). Nothing is timed.
 """
 
 from __future__ import annotations

@@ -30,8 +30,12 @@ GEOM031 = ROOT / "tests" / "rules" / "GEOM031"
 
 @pytest.fixture
 def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    """A cache folder of the test's own. The meshes the tests copy are seconds old at most, so
+    the 2-second racy window is closed here (test_a_mesh_changed_just_before_is_not_kept
+    opens it); a change during the audit is still caught."""
     folder = tmp_path / "cache"
     monkeypatch.setenv("DESCGEN_CACHE_DIR", str(folder))
+    monkeypatch.setattr(findings_cache, "RACY_NS", 0)
     yield folder
 
 
@@ -147,15 +151,70 @@ def test_launch_arguments_are_part_of_the_key(cache: Path, arm: Path, monkeypatc
     assert not any("elbow" in f.message for f in audit(arm, good))
 
 
-def test_a_file_edited_during_the_audit_is_not_kept(cache: Path, arm: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_urdf_is_audited_from_the_bytes_its_key_was_computed_from(
+    cache: Path, arm: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A -> B -> A: the URDF is edited right after its key was computed and put back before
+    the audit ends (a branch switched and back). The findings stored under A's key are A's."""
+    a = arm.read_text()
+    real_inputs, real_run = findings_cache.inputs, registry.run
+
+    def key_then_edit(*args: object, **kwargs: object) -> object:
+        found = real_inputs(*args, **kwargs)  # type: ignore[arg-type]
+        arm.write_text(a.replace('name="tool_link"', 'name="tool link"'))  # B, before the audit reads
+        return found
+
+    def run_then_restore(robot: object, *args: object, **kwargs: object) -> list[Finding]:
+        try:
+            return real_run(robot, *args, **kwargs)  # type: ignore[arg-type]
+        finally:
+            arm.write_text(a)
+
+    with monkeypatch.context() as m:
+        m.setattr(findings_cache, "inputs", key_then_edit)
+        m.setattr(registry, "run", run_then_restore)
+        first = audit(arm, Options())
+    assert not any("tool link" in f.subject for f in first)  # A's findings, from A's bytes
+    assert first == _uncached(arm, Options(), monkeypatch)
+    _no_rules(monkeypatch)
+    assert audit(arm, Options()) == first
+
+
+def test_a_mesh_edited_during_the_audit_is_not_kept(cache: Path, arm: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The mesh is measured in millimetres, then replaced by the metre file before the entry is
+    written: stored, its new stat data would vouch for the old findings."""
     real = registry.run
+    mesh = arm.parent / "meshes" / "arm_mm.stl"
 
-    def edit_then_run(robot: object, *args: object, **kwargs: object) -> list[Finding]:
-        arm.write_text(arm.read_text() + "\n<!-- edited -->\n")
-        return real(robot, *args, **kwargs)  # type: ignore[arg-type]
+    def run_then_edit(robot: object, *args: object, **kwargs: object) -> list[Finding]:
+        found = real(robot, *args, **kwargs)  # type: ignore[arg-type]
+        fresh = mesh.with_name("fresh.stl")
+        shutil.copyfile(mesh.with_name("arm_m.stl"), fresh)
+        os.replace(fresh, mesh)
+        return found
 
-    monkeypatch.setattr(registry, "run", edit_then_run)
+    with monkeypatch.context() as m:
+        m.setattr(registry, "run", run_then_edit)
+        assert _codes(audit(arm, Options()))  # audited with the millimetre mesh
+    assert _entries(cache) == []
+    assert _codes(audit(arm, Options())) == []  # the metre mesh, audited afresh
+
+
+def test_a_mesh_changed_just_before_is_not_kept(cache: Path, arm: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Within the racy window a rewrite may keep every stat field (coarse time stamps): the
+    entry waits until the mesh is older. Oracle: the copy's own ctime, just now."""
+    monkeypatch.setattr(findings_cache, "RACY_NS", 2_000_000_000)
     audit(arm, Options())
+    assert _entries(cache) == []
+    monkeypatch.setattr(findings_cache, "RACY_NS", 0)
+    audit(arm, Options())
+    assert len(_entries(cache)) == 1
+
+
+def test_an_unreadable_mesh_is_not_kept(cache: Path, arm: Path) -> None:
+    """GEOM033 (a mesh that could not be read) may have a passing cause: audited every time."""
+    (arm.parent / "meshes" / "arm_mm.stl").write_bytes(b"solid nothing\nendsolid nothing\n")
+    assert any(f.code == "GEOM033" for f in audit(arm, Options()))
     assert _entries(cache) == []
 
 
@@ -169,6 +228,7 @@ def test_a_file_edited_during_the_audit_is_not_kept(cache: Path, arm: Path, monk
         {"meshes": [], "findings": [["GEOM031", "error", "m", "h", "s"]]},
         {"meshes": [["x"]], "findings": []},
         {"meshes": [["meshes/arm_mm.stl", "ok", "/elsewhere.stl", [1, 2, 3, 4]]], "findings": []},
+        {"meshes": [], "findings": [["GEOM031\nforged: error", "error", "m", "h", "s", ["f", 1, 1, []]]]},
     ],
 )
 def test_an_entry_not_as_written_is_ignored(
@@ -203,13 +263,18 @@ def test_xacro_spec_and_moveit_config_are_not_kept(cache: Path, tmp_path: Path) 
     assert _entries(cache) == []
 
 
-def test_nothing_is_kept_when_caching_is_off(arm: Path, monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+def test_nothing_is_read_or_kept_when_caching_is_off(arm: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("DESCGEN_CACHE_DIR", "")
-    audit(arm, Options())
-    assert not any(tmp_path.rglob("results"))
+
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the result cache was used with caching off")
+
+    monkeypatch.setattr(result_cache, "get", refuse)
+    monkeypatch.setattr(result_cache, "put", refuse)
+    assert _codes(audit(arm, Options()))
 
 
-def test_a_large_kind_is_pruned_by_count_without_stat_until_full(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_kind_with_its_own_bounds_is_pruned_by_count_and_size(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     keys = [result_cache.key("probe", i) for i in range(6)]
     for i, k in enumerate(keys):
         result_cache.put("probe", k, i, keep=4, most_bytes=1024)
@@ -224,7 +289,9 @@ def test_a_hit_imports_neither_lxml_nor_the_rules(arm: Path, tmp_path: Path) -> 
     probe = (
         "import json, sys\n"
         "from pathlib import Path\n"
+        "from descgen.audit import findings_cache\n"
         "from descgen.audit.inputs import Options, audit\n"
+        "findings_cache.RACY_NS = 0  # the fixture's meshes were copied a moment ago\n"
         "found = audit(Path(sys.argv[1]), Options())\n"
         "print('PROBE' + json.dumps([len(found), sorted(m for m in sys.modules if m.startswith(('lxml', 'numpy', "
         "'descgen.audit.rules', 'descgen.readers')))]))\n"

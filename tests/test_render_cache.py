@@ -47,3 +47,23 @@ def test_a_changed_template_is_recompiled(tmp_path: Path, monkeypatch: pytest.Mo
     after = render_package(robot, EXAMPLE.name, overrides)["evidence/frames.md"]
     assert "CHANGED-TEMPLATE" not in before and "CHANGED-TEMPLATE" in after
     _fresh(monkeypatch, "")
+
+
+@pytest.mark.parametrize("first_sandboxed", [True, False])
+def test_sandboxed_and_plain_renders_do_not_share_compiled_code(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, first_sandboxed: bool
+) -> None:
+    """A spec with ``templates:`` renders the default templates in the sandbox, whose compiled
+    calls go through ``environment.call`` (its checks); plain code calls directly. Loaded by the
+    other environment, sandbox code crashes a plain render (AttributeError: no 'call'), and
+    plain code would run in the sandbox unchecked. The oracle: each render with caching off."""
+    robot = load_spec(EXAMPLE).robot
+    empty = tmp_path / "no-overrides"
+    empty.mkdir()
+    _fresh(monkeypatch, "")
+    expected = {sb: render_package(robot, EXAMPLE.name, empty, sb) for sb in (True, False)}
+    order = (first_sandboxed, not first_sandboxed)
+    for sandboxed in order:
+        _fresh(monkeypatch, str(tmp_path / "cache"))
+        assert render_package(robot, EXAMPLE.name, empty, sandboxed) == expected[sandboxed]
+    _fresh(monkeypatch, "")

@@ -85,7 +85,7 @@ def _stock(monkeypatch: pytest.MonkeyPatch) -> None:
     """render_package with jinja2's own code generator (escape per output) and no compiled cache."""
     monkeypatch.setattr(render, "_Environment", jinja2.Environment)
     monkeypatch.setattr(render, "_SandboxedEnvironment", jinja2.sandbox.ImmutableSandboxedEnvironment)
-    monkeypatch.setattr(render, "_bytecode_cache", lambda: None)
+    monkeypatch.setattr(render, "_bytecode_cache", lambda sandboxed: None)
 
 
 # text that markupsafe changes, where the spec lets it stand (names are plain; these are not)

@@ -83,6 +83,18 @@ def test_a_folder_keeps_its_newest_entries(cache: Path, monkeypatch: pytest.Monk
     assert [result_cache.get("probe", k) for k in keys] == [0, None, None, None, 4]
 
 
+def test_the_prune_keeps_the_entries_used_last(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An entry written long ago but read just now outlives one written later and never read."""
+    monkeypatch.setattr(result_cache, "KEEP", 2)
+    old, young, newest = (result_cache.key("probe", i) for i in range(3))
+    for i, k in enumerate((old, young)):
+        result_cache.put("probe", k, i)
+        os.utime(cache / "results" / "probe" / f"{k}.json", ns=((i + 1) * 10**9, (i + 1) * 10**9))
+    assert result_cache.get("probe", old) == 0  # used now
+    result_cache.put("probe", newest, 2)  # three entries: the least recently used goes
+    assert [result_cache.get("probe", k) for k in (old, young, newest)] == [0, None, 2]
+
+
 def test_a_killed_writers_temporary_file_goes_once_it_is_old(cache: Path) -> None:
     """A write that died between mkstemp and rename leaves ``.tmp-*``; the next write's prune
     removes it when it is over an hour old, and leaves a young one (a writer still at work)."""

@@ -26,6 +26,8 @@ checked for shape, decoded into findings field by field; anything else is a miss
 from __future__ import annotations
 
 import os
+import re
+import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, cast
@@ -46,15 +48,22 @@ MOST_BYTES = 256 * 1024  # an entry of the corpus is 1-40 kB (talos: ~100 findin
 # what reads the files and measures the meshes (the rules are descgen's source)
 TOOLS = ("lxml", "PyYAML", "numpy", "trimesh", "pycollada")
 MAX_VIA = 64  # macro call depth recorded per location; a plain URDF has none
+RACY_NS = 2_000_000_000  # a mesh changed this shortly before the audit is not vouched for by its stat (as mesh_cache)
+UNMEASURED = "GEOM033"  # a mesh that could not be read may have failed for a passing reason (EIO, EMFILE)
+_CODE = re.compile(r"[A-Z]{2,10}[0-9]{3}")  # every code of the catalogue (descgen/codes.py)
 
 
 @record
 class Inputs:
-    """One audit's key and what a hit must check again."""
+    """One audit's key, the bytes it was computed from (the audit reads these, not the files
+    again: an edit meanwhile cannot pair one file's findings with another's key), when it
+    began, and what a hit must check again."""
 
     key: str
     description: Path
     package_paths: tuple[Path, ...]
+    data: dict[Path, bytes]
+    started_ns: int
 
 
 def inputs(
@@ -68,12 +77,14 @@ def inputs(
     is off or a file cannot be read (the audit itself then says why)."""
     if cache_root() is None:
         return None
+    started = time.time_ns()
+    data: dict[Path, bytes] = {}
+    files = []
     try:
-        files = [
-            [what, str(path), sha256(read_bounded(path, what))]
-            for what, path in (("URDF", description), ("SRDF", srdf), ("controllers YAML", controllers))
-            if path is not None
-        ]
+        for what, path in (("URDF", description), ("SRDF", srdf), ("controllers YAML", controllers)):
+            if path is not None:
+                data[path] = read_bounded(path, what, display=str(path))
+                files.append([what, str(path), sha256(data[path])])
     except InputError:
         return None
     given = {
@@ -81,13 +92,13 @@ def inputs(
         "launch_args": sorted(launch_args.items()),
         "package_paths": [str(p) for p in package_paths],
     }
-    return Inputs(result_cache.key(KIND, given, TOOLS), description, tuple(package_paths))
+    return Inputs(result_cache.key(KIND, given, TOOLS), description, tuple(package_paths), data, started)
 
 
 def get(found: Inputs) -> list[Finding] | None:
     """The findings recorded for ``found``, when every mesh still resolves to the same
     unchanged file; None otherwise."""
-    value = result_cache.get(KIND, found.key)
+    value = result_cache.get(KIND, found.key, MOST_BYTES)
     if not isinstance(value, dict):
         return None
     meshes, findings = value.get("meshes"), value.get("findings")
@@ -97,18 +108,21 @@ def get(found: Inputs) -> list[Finding] | None:
     return None if any(f is None for f in out) else [f for f in out if f is not None]
 
 
-def put(found: Inputs, robot: Robot, findings: Sequence[Finding], again: Inputs | None) -> None:
-    """Record ``findings`` of ``robot`` (audited from ``found``'s files). ``again`` is the key
-    of the same files computed after the audit: a file edited meanwhile keeps the entry out."""
-    if again is None or again.key != found.key:
+def put(found: Inputs, robot: Robot, findings: Sequence[Finding]) -> None:
+    """Record ``findings`` of ``robot`` (audited from ``found``'s bytes). Not when a mesh
+    changed during the audit or just before it (its stat data cannot tell the content it was
+    measured with from the content now, git's "racily clean"), nor when a mesh could not be
+    read (the reason may pass)."""
+    if any(f.code == UNMEASURED for f in findings):
         return
+    recent = found.started_ns - RACY_NS
     files = dict(robot.mesh_files)
     meshes = []
     for name, state in robot.mesh_status:
         file = files.get(name)
         stat = _stat(file) if file is not None else None
-        if file is not None and stat is None:
-            return  # gone since it was measured
+        if file is not None and (stat is None or stat[1] >= recent or stat[3] >= recent):
+            return  # gone, or changed too recently (mtime, ctime) to be told apart by its stat
         meshes.append([name, state, file, stat])
     result_cache.put(KIND, found.key, {"meshes": meshes, "findings": [_row(f) for f in findings]}, KEEP, MOST_BYTES)
 
@@ -148,7 +162,7 @@ def _finding(row: Any) -> Finding | None:
         return None
     code, severity, message, hint, subject, where = row
     at = _where(where, 0)
-    if severity not in SEVERITIES or at is None:
+    if severity not in SEVERITIES or at is None or not _CODE.fullmatch(code):
         return None
     return Finding(code, cast(Severity, severity), message, hint, subject, at)
 

@@ -49,8 +49,13 @@ def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) 
     return mesh_paths.mesh_status(robot, description, package_paths)[0]
 
 
-def load_description(path: Path, options: Options = Options()) -> tuple[Robot, list[Finding]]:
-    """The model of one description and what its readers reported. InputError when unusable."""
+def load_description(
+    path: Path, options: Options = Options(), given: Mapping[Path, bytes] | None = None
+) -> tuple[Robot, list[Finding]]:
+    """The model of one description and what its readers reported. InputError when unusable.
+    ``given`` holds bytes already read of the URDF, SRDF or controllers YAML: those are read,
+    not the files again (the findings cache keys an audit by exactly the bytes it audited)."""
+    given = given or {}
     shown = str(path)
     check_file(path, "description", display=shown)  # missing, a FIFO, a device, too large: before any read
     kind = kind_of(path)
@@ -67,12 +72,12 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
             expansion = expand_located(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
             data, sources = expansion.xml, expansion.sources
         else:
-            data = read_bounded(path, "URDF", display=shown)
+            data = given[path] if path in given else read_bounded(path, "URDF", display=shown)
         display = f"{shown} (expanded)" if kind == "xacro" else shown
         from ..readers.urdf import read_urdf_text
 
         robot, found = read_urdf_text(data, display, sources)
-    robot, more = with_given_files(robot, options)
+    robot, more = with_given_files(robot, options, given)
     found += more
     if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
         return robot, found
@@ -81,21 +86,24 @@ def load_description(path: Path, options: Options = Options()) -> tuple[Robot, l
     return dataclasses.replace(robot, mesh_status=tuple(status.items()), mesh_files=resolved), found
 
 
-def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Finding]]:
+def with_given_files(
+    robot: Robot, options: Options, given: Mapping[Path, bytes] | None = None
+) -> tuple[Robot, list[Finding]]:
     """``robot`` with the SRDF, controllers YAML and MoveIt config named on the command line in
-    place of its own, and what their readers reported."""
+    place of its own, and what their readers reported (``given``: as load_description)."""
     found: list[Finding] = []
+    given = given or {}
     if options.srdf is not None:
         from ..readers.srdf import read_srdf_text
 
-        semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF"), str(options.srdf))
+        semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF", given), str(options.srdf))
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
         from ..readers.controllers import read_controllers_file  # PyYAML only when a YAML is given
 
         cf = read_controllers_file(
-            _read(options.controllers, "controllers YAML").decode("utf-8", "replace"),
+            _read(options.controllers, "controllers YAML", given).decode("utf-8", "replace"),
             str(options.controllers),
             options.launch_args,
         )
@@ -117,8 +125,8 @@ def with_given_files(robot: Robot, options: Options) -> tuple[Robot, list[Findin
     return robot, found
 
 
-def _read(path: Path, what: str) -> bytes:
-    return read_bounded(path, what)
+def _read(path: Path, what: str, given: Mapping[Path, bytes]) -> bytes:
+    return given[path] if path in given else read_bounded(path, what)
 
 
 def audit(path: Path, options: Options = Options()) -> list[Finding]:
@@ -132,10 +140,10 @@ def audit(path: Path, options: Options = Options()) -> list[Finding]:
         hit = findings_cache.get(kept)
         if hit is not None:
             return hit
-    robot, found = load_description(path, options)
+    robot, found = load_description(path, options, kept.data if kept is not None else None)
     found += run(robot)
     if kept is not None:
-        findings_cache.put(kept, robot, found, _cache_inputs(path, options))
+        findings_cache.put(kept, robot, found)
     return found
 
 

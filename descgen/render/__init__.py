@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import hashlib
 from collections.abc import Collection
 from importlib import resources
 from pathlib import Path
@@ -16,7 +17,7 @@ from ..cache_dir import cache_folder
 from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
-from . import context, header
+from . import context, escaping, header
 from .escaping import TextEscaping, escape_text
 from .formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
 
@@ -28,14 +29,19 @@ def default_templates() -> Path:
 
 
 @functools.cache
-def _bytecode_cache() -> jinja2.BytecodeCache | None:
+def _bytecode_cache(sandboxed: bool) -> jinja2.BytecodeCache | None:
     """Compiled templates kept in the user cache folder (descgen/cache_dir.py), like Python's
     own __pycache__: compiling the 40-odd templates is half of a warm ``check``. jinja2 keys an
     entry by the template's name and file and recompiles when the source's checksum differs;
-    None (compile every time) when caching is off or the folder cannot be made."""
-    # the compiled code calls Environment.escape_text (escaping.py): a folder of its own, so
-    # that code compiled by another code generator (or this one) is never loaded by the other
-    folder = cache_folder(f"jinja2-{jinja2.__version__}-text-escaping")
+    None (compile every time) when caching is off or the folder cannot be made.
+
+    The code depends on more than the source, so the folder is named by the rest: jinja2's
+    version, the environment (the sandbox compiles calls through ``environment.call``, which
+    checks them; plain code calls directly: one loaded by the other crashes, or skips the
+    sandbox's checks) and the code generator (escaping.py, by its bytes)."""
+    generator = hashlib.sha256(Path(escaping.__file__).read_bytes()).hexdigest()[:16]
+    kind = "sandbox" if sandboxed else "plain"
+    folder = cache_folder(f"jinja2-{jinja2.__version__}-{kind}-{generator}")
     if folder is None:
         return None
     return jinja2.FileSystemBytecodeCache(str(folder))
@@ -67,7 +73,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     make = _SandboxedEnvironment if sandboxed else _Environment
     env = make(
         loader=jinja2.ChoiceLoader(loaders),
-        bytecode_cache=_bytecode_cache(),
+        bytecode_cache=_bytecode_cache(sandboxed),
         autoescape=jinja2.select_autoescape(enabled_extensions=XML_TEMPLATES, default_for_string=False, default=False),
         undefined=jinja2.StrictUndefined,
         keep_trailing_newline=True,

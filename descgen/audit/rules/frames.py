@@ -103,8 +103,9 @@ def frame_not_in_tree(robot: Robot) -> Iterator[Finding]:
     # below reports at that parameter (a second finding for the same name would be a double
     # report; an unresolved $(var ...) there is CTRL052/053's).
     declared = {(x.parent, x.child, x.owner) for x in robot.external_frames}
+    parents = {x.parent for x in all_edges}  # one set, not a scan of every edge per edge
     for e in all_edges:
-        joined = e.child in links or e.parent in links or any(x.parent == e.child for x in all_edges)
+        joined = e.child in links or e.parent in links or e.child in parents
         if e.owner != RSP and (e.parent, e.child, e.owner) in declared and not joined:
             yield at(
                 "FRAME004",

@@ -7,6 +7,7 @@ from collections.abc import Callable, Iterator
 
 from ... import principal
 from ...extent import (
+    MomentBound,
     bounding_hulls,
     half_trace_by_span,
     moment_by_shapes,
@@ -15,7 +16,7 @@ from ...extent import (
     within_shapes,
 )
 from ...findings import Finding, Severity
-from ...model import Inertia, Link, Robot
+from ...model import Collision, Inertia, Link, Robot
 from ...physics import moving_links, own_bodies, welded_count
 from ...rigid import Vec, norm, rpy_rot
 from ..registry import at, rule
@@ -234,16 +235,13 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
             )
 
 
-def _aabb(robot: Robot, link: str) -> tuple[Vec, Vec] | None:
+def _box_of(collisions: tuple[Collision, ...]) -> tuple[Vec, Vec] | None:
     """Axis-aligned box around a link's collision primitives, in the link frame."""
     from ...model import Box, Cylinder, Sphere
 
-    lk = robot.link(link)
-    if lk is None or not lk.collisions:
-        return None
     lows: list[Vec] = []
     highs: list[Vec] = []
-    for c in lk.collisions:
+    for c in collisions:
         g = c.geometry
         if isinstance(g, Box):
             half = (g.size[0] / 2, g.size[1] / 2, g.size[2] / 2)
@@ -273,6 +271,7 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
     The mass sits where there is no material: usually an origin in the wrong frame or unit.
     """
     colliding = welded_count(robot, lambda other: other.collisions)
+    boxes: dict[tuple[tuple[object, object], ...], tuple[Vec, Vec] | None] = {}
     for lk in robot.links:
         i = lk.inertial
         if i is None or i.mass is None or i.mass <= 0:
@@ -280,7 +279,13 @@ def com_outside_geometry(robot: Robot) -> Iterator[Finding]:
         first = robot.link(lk.name)  # the body counts names, and a repeated name is its first link
         if colliding.get(lk.name, 0) - (1 if first is not None and first.collisions else 0) > 0:
             continue  # the body's material is partly on welded links: one box says too little
-        box = _aabb(robot, lk.name)
+        if first is None or not first.collisions:
+            continue
+        key = tuple((c.geometry, c.origin) for c in first.collisions)  # a repeated part: boxed once
+        if key in boxes:
+            box = boxes[key]
+        else:
+            box = boxes[key] = _box_of(first.collisions)
         if box is None:
             continue
         low, high = box
@@ -325,15 +330,20 @@ def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
     moving = own_bodies(robot)
     span: list[float] = []  # the robot's span, computed once and only when a link needs it
     floor: list[float] = []  # a lower bound on it that poses no shape (extent.span_floor): most links stop there
+    # a repeated part (wheels, fingers, a synthetic chain) has equal keys: decided once
+    decided: dict[tuple[object, ...], MomentBound | bool | None] = {}
     for lk in robot.links:
         i = lk.inertial
         if i is None or i.inertia is None or i.mass is None or i.mass <= MASSLESS:
             continue
-        hulls = bounding_hulls(lk)
-        if hulls is not None and within_shapes(lk, hulls, GEOMETRY_MARGIN):
-            continue  # a few rim corners settle it: the common case, without all 128 per cylinder
-        found = moment_by_shapes(lk) if hulls is not None else None
-        if found is not None:
+        key = (i.mass, i.origin, i.inertia, *((s.geometry, s.origin) for s in lk.shapes()))
+        if key in decided:
+            found = decided[key]
+        else:
+            found = decided[key] = _by_shapes(lk)
+        if found is True:
+            continue
+        if isinstance(found, MomentBound):
             if found.ratio <= GEOMETRY_MARGIN:
                 continue
             why = (
@@ -365,3 +375,18 @@ def inertia_too_large_for_size(robot: Robot) -> Iterator[Finding]:
             severity=_severity(robot, lk, moving),
             subject=lk.subject,
         )
+
+
+def _by_shapes(lk: Link) -> MomentBound | bool | None:
+    """INER011's answer from the link's own shapes: True when within GEOMETRY_MARGIN, else the
+    moment that comes closest to (or beyond) its bound, None when the shapes bound nothing
+    (then the robot's span decides). It depends only on the inertial's mass, origin and
+    tensor and on each shape's geometry and origin, the key the rule keeps it under (equal
+    keys differ at most in the sign of a zero, which changes no verdict and no printed value:
+    distances and bounds are square roots of sums of squares)."""
+    hulls = bounding_hulls(lk)
+    if hulls is None:
+        return None
+    if within_shapes(lk, hulls, GEOMETRY_MARGIN):
+        return True  # a few rim corners settle it: the common case, without all 128 per cylinder
+    return moment_by_shapes(lk)
