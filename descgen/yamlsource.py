@@ -58,23 +58,13 @@ class _Loader(_BASE):  # type: ignore[valid-type,misc]
             # Without path resolvers descend_resolver and ascend_resolver return at once, so
             # builtins that take their arguments and do nothing stand in (an instance
             # attribute is found before the class's method, and is not bound to self), and
-            # resolve is a closure over the table, without attribute lookups.
+            # resolve is a closure over the table, without attribute lookups. With a path
+            # resolver registered, PyYAML's own three methods run unchanged.
             self.__dict__.update(
                 descend_resolver=slice,  # slice(node, index): a throwaway object, nothing else
                 ascend_resolver=tuple,  # tuple(): the empty tuple
                 resolve=_remembering(self._tags, super().resolve),
             )
-
-    def resolve(self, kind: type[yaml.Node], value: Any, implicit: Any) -> str:
-        if self.yaml_path_resolvers:
-            return str(super().resolve(kind, value, implicit))
-        if kind is not yaml.ScalarNode:  # what BaseResolver.resolve answers for a collection without path resolvers
-            return _SEQ if kind is yaml.SequenceNode else _MAP
-        key = (value, implicit)
-        tag = self._tags.get(key)
-        if tag is None:
-            tag = self._tags[key] = str(super().resolve(kind, value, implicit))
-        return tag
 
 
 _LOADER: type[yaml.SafeLoader] = _Loader
@@ -83,7 +73,8 @@ _LOADER: type[yaml.SafeLoader] = _Loader
 def _remembering(
     tags: dict[tuple[str, tuple[bool, bool]], str], resolve: Callable[[type[yaml.Node], Any, Any], Any]
 ) -> Callable[[type[yaml.Node], Any, Any], str]:
-    """:meth:`_Loader.resolve` without path resolvers, as one function."""
+    """PyYAML's ``resolve`` without path resolvers, remembering each scalar's tag by its text
+    and quoting (a collection's tag is its kind's: BaseResolver's answer with no path resolver)."""
 
     def remembered(kind: type[yaml.Node], value: Any, implicit: Any) -> str:
         if kind is _SCALAR:
@@ -284,22 +275,13 @@ class _Builder:
     def _key(self, key_node: yaml.Node) -> str:
         """A mapping key other than plain text: a merge key and a collection are refused, a
         scalar of another type (``1:``, ``true:``) is named by its text."""
+        refused = None
         if key_node.tag == "tag:yaml.org,2002:merge":
-            raise _fail(
-                self.file,
-                "YAML merge keys (<<) are not supported",
-                "write the keys out",
-                key_node.start_mark.line + 1,
-                key_node.start_mark.column + 1,
-            )
-        if not isinstance(key_node, yaml.ScalarNode):
-            raise _fail(
-                self.file,
-                "a mapping key must be a plain name",
-                "use a plain name as key",
-                key_node.start_mark.line + 1,
-                key_node.start_mark.column + 1,
-            )
+            refused = ("YAML merge keys (<<) are not supported", "write the keys out")
+        elif not isinstance(key_node, yaml.ScalarNode):
+            refused = ("a mapping key must be a plain name", "use a plain name as key")
+        if refused is not None:
+            raise _fail(self.file, *refused, key_node.start_mark.line + 1, key_node.start_mark.column + 1)
         key = key_node.value if key_node.tag == _STR else self.construct(key_node)
         return key if isinstance(key, str) else str(key_node.value)
 
