@@ -669,16 +669,23 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv: Sequence[str] | None = None) -> int:
+def main(argv: Sequence[str] | None = None, ending: bool = False) -> int:
+    """Run one command; its exit code. ``ending``: the process ends after it (see :func:`entry`)."""
     _one_blas_thread()
     _fewer_collections()
     from .pydantic_plugins import no_plugin_lookup
 
     with no_plugin_lookup():
-        return _run(argv)
+        return _run(argv, ending)
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def entry() -> NoReturn:
+    """The console script and ``python -m descgen``: :func:`main` in a process that ends with it,
+    so the objects the command made are left to the exit (descgen/collector.py), not collected."""
+    raise SystemExit(main(ending=True))
+
+
+def _run(argv: Sequence[str] | None, ending: bool = False) -> int:
     try:
         args = parser().parse_args(argv)
     except SystemExit as exc:  # argparse: --help, --version, or a bad option value (exit 2)
@@ -686,7 +693,7 @@ def _run(argv: Sequence[str] | None) -> int:
     try:
         # validate, generate and check: every object lives to the end (descgen/collector.py), and
         # their input is bounded (a spec is at most 5 MiB); tf-audit and control keep the collector
-        with collector.paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check)):
+        with collector.paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check), ending):
             code = int(args.fn(args))
         sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit
         return code

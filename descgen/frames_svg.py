@@ -2,7 +2,9 @@
 would change.
 
 The svg is a pure function of the dot text and of the Graphviz that draws it, so the svg
-records both in a comment (``<!-- descgen-source: ... -->``): the sha256 of the dot bytes, and
+records both in a comment (``<!-- descgen-source: ... -->``): the sha256 of the dot bytes
+without the file's leading ``//`` comment lines (descgen's header, which names the spec's hash
+and so changes with every edit of the spec, while dot draws nothing of it), and
 the ``dot`` executable it came from (resolved path, size and modification time; a Graphviz
 upgrade replaces the executable, and reading its identity costs no process, unlike
 ``dot -V``). When both match, ``dot`` is not run. Its bytes depend on the Graphviz version,
@@ -29,9 +31,18 @@ def _dot_identity(dot: str) -> str:
     return f"{real}:{st.st_size}:{st.st_mtime_ns}"
 
 
+def drawn(dot_source: bytes) -> bytes:
+    """What of a dot file Graphviz draws from: all but its leading ``//`` comment lines."""
+    rest = dot_source
+    while rest.startswith(b"//"):
+        _, _, rest = rest.partition(b"\n")
+    return rest
+
+
 def stamp(dot_source: bytes, dot: str) -> str:
     """The comment that says what an svg was made from."""
-    return f"{_MARK}frames.dot sha256 {hashlib.sha256(dot_source).hexdigest()}, dot {_dot_identity(dot)} -->"
+    digest = hashlib.sha256(drawn(dot_source)).hexdigest()
+    return f"{_MARK}frames.dot sha256 {digest}, dot {_dot_identity(dot)} -->"
 
 
 def _recorded(svg: Path) -> str | None:

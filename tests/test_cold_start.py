@@ -165,6 +165,41 @@ def test_frames_svg_is_drawn_only_when_the_dot_changed(tmp_path: Path, monkeypat
     assert _calls(log) == 4
 
 
+def test_frames_svg_is_not_drawn_again_for_a_new_header(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An edited spec changes the dot file's header (its hash) and nothing dot draws."""
+    from descgen.generate import draw_frames
+
+    log = _stub_dot(tmp_path, monkeypatch)
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    dot = evidence / "frames.dot"
+    dot.write_text("// generated from a.yaml\n// descgen spec-sha256=1\ndigraph frames { a -> b }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    dot.write_text("// generated from a.yaml\n// descgen spec-sha256=2\ndigraph frames { a -> b }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 1
+    dot.write_text("// generated from a.yaml\n// descgen spec-sha256=3\ndigraph frames { a -> c }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 2
+    # a comment line inside the graph is the graph's text: drawn again, as any other change
+    dot.write_text("// descgen spec-sha256=3\ndigraph frames {\n// note\na -> c }\n", encoding="utf-8")
+    draw_frames(tmp_path / "pkg")
+    assert _calls(log) == 3
+
+
+def test_real_dot_draws_the_same_svg_whatever_the_header(tmp_path: Path) -> None:
+    """The oracle for leaving the header out of the stamp: Graphviz's own output."""
+    require_tool("dot")
+    body = 'digraph frames {\n  "base_link" -> "tool0" [label="robot_state_publisher\\n/tf"];\n}\n'
+    drawn = []
+    for header in ("", "// generated from a.yaml by descgen\n// descgen spec-sha256=1 content-sha256=2\n"):
+        path = tmp_path / f"f{len(drawn)}.dot"
+        path.write_text(header + body, encoding="utf-8")
+        done = subprocess.run(["dot", "-Tsvg", str(path)], capture_output=True, check=True)
+        drawn.append(done.stdout)
+    assert drawn[0] == drawn[1] and b"tool0" in drawn[0]
+
+
 def test_frames_svg_is_drawn_again_by_another_dot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     from descgen.generate import draw_frames
 
@@ -231,6 +266,34 @@ def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
     assert "GEN021" not in {f.code for n, found in named if n != "urdfdom's check_urdf accepts the URDF" for f in found}
 
 
+@pytest.mark.parametrize(
+    ("links", "rejected"),
+    [
+        # urdfdom logs these on stderr and still exits 0 (reference/urdf.md): a failure here
+        ('<link name="a"><inertial><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>', True),
+        ('<link name="a"><visual><geometry/></visual></link>', True),
+        # a name with "Error" in it, printed in the tree on stdout: no error
+        (
+            '<link name="a"/><link name="ErrorLink"/><joint name="Error_j" type="fixed"><parent link="a"/>'
+            '<child link="ErrorLink"/></joint>',
+            False,
+        ),
+    ],
+)
+def test_check_urdf_judges_urdfdoms_error_stream(links: str, rejected: bool, tmp_path: Path) -> None:
+    from descgen.checks.urdfdom import check_urdf
+
+    require_tool("check_urdf")
+
+    class Robot:
+        name = "r"
+
+    found = check_urdf({"urdf/r.urdf": f'<robot name="r">{links}</robot>'}, Robot, tmp_path)  # type: ignore[arg-type]
+    assert [f.code for f in found] == (["GEN021"] if rejected else [])
+    if rejected:
+        assert "exit 0" in found[0].message and "Error:" in found[0].message
+
+
 def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """A check_urdf that takes 1 s: started before the in-process proofs (the first of them waits
     for its start stamp; run after them, it would stamp later), and its rejection is still reported."""
@@ -247,7 +310,7 @@ def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatc
     # `date` has written, and a reader could see it exist before the stamp's own time
     stub.write_text(
         f'#!/bin/sh\ndate +%s.%N > "{started}.tmp"\nmv "{started}.tmp" "{started}"\nsleep 1\n'
-        'echo "Error: planted"\nexit 3\n',
+        'echo "Error: planted" >&2\nexit 3\n',  # where urdfdom writes its errors
         encoding="utf-8",
     )
     stub.chmod(0o755)

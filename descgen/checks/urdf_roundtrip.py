@@ -146,6 +146,11 @@ Rows = Sequence[Sequence[float]]
 
 def _rows_close(a: Rows, b: Rows) -> bool:
     """``_close`` for two matrices of plain numbers: same shape, every element within TOL."""
+    # nearly always the same floats, read back as written: one comparison in C. Tuples compare
+    # items by identity first, so a NaN would equal itself there: a finite sum rules NaN out
+    # (and an inf, whose sum may be NaN, takes the loop below as before)
+    if a == b and (total := sum(map(sum, a))) == total:
+        return True
     if len(a) != len(b):
         return False
     for ra, rb_ in zip(a, b, strict=True):

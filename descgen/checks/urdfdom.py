@@ -41,30 +41,33 @@ def start_check_urdf(files: dict[str, str], robot: Robot, where: Path) -> Callab
     with tempfile.NamedTemporaryFile("w", suffix=".urdf", delete=False, encoding="utf-8") as fh:
         fh.write(files[rel])
         path = fh.name
+    # urdfdom writes its errors to stderr (console_bridge logs warnings and errors there, and
+    # check_urdf its own failure); stdout is the tree, indented by depth (~2 MB for a 1000-link
+    # chain), where a link named "ErrorLink" is no error: it is not read
     try:
-        proc = subprocess.Popen([tool, path], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        proc = subprocess.Popen([tool, path], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     except BaseException:
         os.unlink(path)
         raise
 
     def collect() -> list[Finding]:
         try:
-            out, err = proc.communicate(timeout=120)
+            _, err = proc.communicate(timeout=120)
         except subprocess.TimeoutExpired:
             proc.kill()
-            out, err = proc.communicate()
+            _, err = proc.communicate()
         finally:
             os.unlink(path)
-        return _judged(proc.returncode, out, err, rel, loc)
+        return _judged(proc.returncode, err.decode("utf-8", "replace"), rel, loc)
 
     return collect
 
 
-def _judged(code: int, out: str, err: str, rel: str, loc: Where) -> list[Finding]:
+def _judged(code: int, err: str, rel: str, loc: Where) -> list[Finding]:
     # urdfdom logs some errors without failing (reference/urdf.md): treat them as failures
-    logged = [ln for ln in (out + err).splitlines() if "Error" in ln or "error" in ln.split(":")[0]]
+    logged = [ln for ln in err.splitlines() if "Error" in ln or "error" in ln.split(":")[0]]
     if code != 0 or logged:
-        detail = "; ".join(logged[:3]) or (out + err).strip()[:300]
+        detail = "; ".join(logged[:3]) or err.strip()[:300]
         return [
             Finding(
                 "GEN021",

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from lxml import etree
@@ -58,8 +58,6 @@ def expand_packages(
     hit = result_cache.get(_KIND, key)
     if isinstance(hit, dict) and isinstance(hit.get("xml"), str) and isinstance(hit.get("folder"), str):
         return hit["xml"], hit["folder"]
-    from ..readers.xacro_file import expand as sandboxed_expand
-
     with tempfile.TemporaryDirectory(prefix="descgen-xacro-") as tmp:
         root = Path(tmp)
         for name, files in packages.items():
@@ -69,9 +67,37 @@ def expand_packages(
                     target.parent.mkdir(parents=True, exist_ok=True)
                     target.write_text(text, encoding="utf-8")
         folder = root / package
-        xml = sandboxed_expand(folder / xacro_path, xacro_path, dict(args), package_paths=[root]).decode("utf-8")
+        xml = expand_scratch(folder / xacro_path, xacro_path, args, [root])
     result_cache.put(_KIND, key, {"xml": xml, "folder": str(folder)})
     return xml, str(folder)
+
+
+def expand_scratch(top: Path, display: str, args: Mapping[str, str], package_paths: Sequence[Path]) -> str:
+    """The sandboxed expansion of ``top``, a file of a scratch folder (it is overwritten by its
+    skeleton while that expands, then written back), with its static parts set aside
+    (readers/xacro_skeleton.py) when it has any; the whole file expanded when not, or when
+    the skeleton fails (then the whole file fails too, and says why in its own terms)."""
+    from ..readers import xacro_skeleton
+    from ..readers.xacro_file import MAX_ELEMENTS
+    from ..readers.xacro_file import expand as sandboxed_expand
+
+    whole = top.read_bytes()
+    try:
+        skeleton = xacro_skeleton.split(whole.decode("utf-8"))
+    except UnicodeDecodeError:
+        skeleton = None
+    if skeleton is not None:
+        top.write_text(skeleton.text, encoding="utf-8")
+        try:
+            expanded = sandboxed_expand(top, display, dict(args), package_paths=package_paths).decode("utf-8")
+            joined = xacro_skeleton.join(expanded, skeleton, MAX_ELEMENTS)
+        except InputError:
+            joined = None
+        finally:
+            top.write_bytes(whole)
+        if joined is not None:
+            return joined
+    return sandboxed_expand(top, display, dict(args), package_paths=package_paths).decode("utf-8")
 
 
 def expand(files: dict[str, str], xacro_path: str) -> str:
