@@ -91,7 +91,7 @@ def test_what_xacro_changes_is_expanded_and_the_rest_set_aside(tmp_path: Path) -
     skeleton = xacro_skeleton.split(SKELETAL)
     assert skeleton is not None
     # set aside: the plain link, the joint, and plain elements inside walked ones
-    aside = {p.get("name") or p.tag for p in skeleton.parts}
+    aside = {e.get("name") or e.tag for run in skeleton.parts for e in run if isinstance(e.tag, str)}
     assert {"plain", "j"} <= aside
     assert {"body", "y", "kept", "mass", "inertial"} <= aside  # mass: inside a block; inertial: in attr_removed
     # never set aside: anything holding a $ (also as a character reference), a xacro:*
@@ -118,7 +118,7 @@ def test_what_cannot_be_mirrored_is_expanded_whole(tmp_path: Path) -> None:
         "cdata": SKELETAL.replace("<y>plain</y>", "<y><![CDATA[ ${v} stays ]]></y>"),
         "inner namespace": SKELETAL.replace("<visual>", f"<visual {XMLNS}>", 1),
         "doctype": SKELETAL.replace("<robot ", '<!DOCTYPE robot [<!ENTITY e "${v}">]>\n<robot ', 1),
-        "placeholder name": SKELETAL.replace("<kept/>", f"<{xacro_skeleton.PLACEHOLDER}/>"),
+        "a name only libxml2 takes": SKELETAL.replace("<kept/>", "<\u037fkept/>"),  # expat refuses it
         "latin-1": SKELETAL.replace('<?xml version="1.0"?>', '<?xml version="1.0" encoding="ISO-8859-1"?>'),
     }
     for name, text in cases.items():
@@ -131,15 +131,115 @@ def test_what_cannot_be_mirrored_is_expanded_whole(tmp_path: Path) -> None:
     assert xacro_skeleton.split('<robot name="r"><!-- nothing below --></robot>') is None  # nothing to set aside
 
 
+def test_static_siblings_are_set_aside_as_one_run_up_to_text_xacro_evaluates(tmp_path: Path) -> None:
+    text = f"""<robot name="r" {XMLNS}>
+  <xacro:property name="v" value="5"/>
+  <!-- before the run: stays -->
+  <a/>plain text<!-- inside the run --><b k="1"/>
+  <c/>then ${{v}} evaluated<d/>
+  <e/><!-- after the last element: stays -->
+  <xacro:if value="true"><f/></xacro:if>
+</robot>"""
+    skeleton = xacro_skeleton.split(text)
+    assert skeleton is not None
+    runs = [[n.tag if isinstance(n.tag, str) else "comment" for n in run] for run in skeleton.parts]
+    # one run up to the evaluated tail, another after it, and <f/>, a block of xacro:if
+    assert runs == [["a", "comment", "b", "c"], ["d", "e"]]
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(text)
+    _same_as_xacro(path)
+    out = expand_scratch(path, "r", {}, [tmp_path])
+    assert "then 5 evaluated" in out and "plain text" in out and "<f/>" in out
+
+
 def test_a_changed_placeholder_is_not_joined() -> None:
-    skeleton = xacro_skeleton.split(f'<robot {XMLNS}><a x="1"/><b y="${{1}}"/></robot>')
-    assert skeleton is not None and len(skeleton.parts) == 1
-    tag = xacro_skeleton.PLACEHOLDER
-    assert xacro_skeleton.join(f'<robot><{tag} n="0"/><b y="1"/></robot>', skeleton, 100) is not None
-    for changed in (f'<{tag} n="1"/>', f'<{tag} n="x"/>', f"<{tag}/>", f'<{tag} n="0"><c/></{tag}>'):
-        again = xacro_skeleton.split(f'<robot {XMLNS}><a x="1"/><b y="${{1}}"/></robot>')
-        assert again is not None
-        assert xacro_skeleton.join(f"<robot>{changed}</robot>", again, 100) is None, changed
+    text = f'<robot {XMLNS}><a x="1"/><b y="${{1}}"/></robot>'
+    skeleton = xacro_skeleton.split(text)
+    assert skeleton is not None and len(skeleton.parts) == 1 and len(skeleton.parts[0]) == 1
+    tag = skeleton.tag
+    assert tag.startswith(xacro_skeleton.PLACEHOLDER) and tag in skeleton.text
+    assert xacro_skeleton.join(f'<robot><{tag} n="0"/><b y="1"/></robot>', skeleton, 100, 10**6) is not None
+    changed = (
+        f'<{tag} n="1"/>',
+        f'<{tag} n="x"/>',
+        f"<{tag}/>",
+        f'<{tag} n="0"><c/></{tag}>',
+        f'<g xmlns="http://u"><{tag} n="0"/></g>',  # under a default namespace xacro's output declared
+    )
+    for stand_in in changed:
+        again = xacro_skeleton.split(text)
+        assert again is not None and again.tag != tag  # a new token for every split
+        assert xacro_skeleton.join(f"<robot>{stand_in.replace(tag, again.tag)}</robot>", again, 100, 10**6) is None
+
+
+def test_placeholders_cannot_be_forged_or_hidden_by_the_file(tmp_path: Path) -> None:
+    """What xacro makes of the file (xacro:element, xacro:attribute, an included macro) cannot
+    be taken for a placeholder, nor put one out of join's reach."""
+    include = tmp_path / "inc.xacro"
+    include.write_text(
+        f'<robot {XMLNS}><xacro:macro name="wrap" params="*b">'
+        '<ns xmlns="http://other"><xacro:insert_block name="b"/></ns></xacro:macro></robot>'
+    )
+    for body in (
+        f'<xacro:element xacro:name="{xacro_skeleton.PLACEHOLDER}${{\'x\'}}" n="0"/>',
+        '<g><xacro:attribute name="xml${\'ns\'}" value="http://u"/><a><b/></a></g>',
+        '<xacro:include filename="inc.xacro"/><xacro:wrap><blk><link name="in_ns"/></blk></xacro:wrap>',
+    ):
+        path = tmp_path / "r.urdf.xacro"
+        path.write_text(f'<robot name="r" {XMLNS}><link name="a"><visual/></link>{body}</robot>')
+        _same_as_xacro(path)
+
+
+def test_characters_minidom_writes_raw_are_left_to_xacro(tmp_path: Path) -> None:
+    """Python 3.11's minidom writes a tab, newline or CR in an attribute, and a CR in a text, as
+    the character; xacro's output read again has a space or a newline there."""
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(
+        f'<robot name="r" {XMLNS}><link name="a&#10;b"/><p>x&#13;y</p><q v="t&#9;u"/><link name="${{1}}"/></robot>'
+    )
+    _same_as_xacro(path)
+    out = parse(expand_scratch(path, "r", {}, [tmp_path]))
+    assert out[0].get("name") == "a b" and out[1].text == "x\ny" and out[2].get("v") == "t u"
+
+
+def test_a_file_that_reads_itself_reads_the_file(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(
+        f'<robot name="r" {XMLNS}><g><a/></g><n v="${{len(str(xacro.load_yaml(\'r.urdf.xacro\')))}}"/></robot>'
+    )
+    _same_as_xacro(path)
+
+
+def test_what_the_sandbox_bounds_still_refuses(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A macro that clones a large static part is refused at its size, before any copy; a file
+    over the sandbox's file bound is refused as before; xacro's locale decides non-ASCII files."""
+    path = tmp_path / "r.urdf.xacro"
+    big = "x" * 5000
+    calls = "<xacro:m/>" * 20
+    path.write_text(
+        f'<robot name="r" {XMLNS}><xacro:macro name="m" params=""><g><big v="{big}"/></g></xacro:macro>{calls}</robot>'
+    )
+    assert expand_scratch(path, "r", {}, [tmp_path]).count(big) == 20
+    monkeypatch.setattr(xacro_file, "MAX_TEXT", 50_000)  # 20 copies of 5,000 characters
+    with pytest.raises(InputError, match="more text"):
+        expand_scratch(path, "r", {}, [tmp_path])
+    monkeypatch.undo()
+    monkeypatch.setattr(xacro_file, "MAX_FILE_BYTES", 1000)
+    with pytest.raises(InputError, match="larger than"):
+        expand_scratch(path, "r", {}, [tmp_path])
+    monkeypatch.undo()
+    from descgen.checks import xacro_expand
+
+    split = xacro_skeleton.split
+    calls_made: list[str] = []
+    monkeypatch.setattr(xacro_skeleton, "split", lambda text: calls_made.append(text) or split(text))
+    monkeypatch.setattr(xacro_expand, "_utf8_locale", lambda: False)
+    path.write_text(f'<robot name="r" {XMLNS}><link name="é"/><link name="${{1}}"/></robot>')
+    expand_scratch(path, "r", {}, [tmp_path])
+    assert calls_made == []  # non-ASCII under another encoding: xacro alone reads the file
+    path.write_text(f'<robot name="r" {XMLNS}><link name="e"/><link name="${{1}}"/></robot>')
+    expand_scratch(path, "r", {}, [tmp_path])
+    assert len(calls_made) == 1
 
 
 def test_the_element_bound_still_holds_for_parts_set_aside(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -148,7 +248,7 @@ def test_the_element_bound_still_holds_for_parts_set_aside(tmp_path: Path, monke
     path = tmp_path / "r.urdf.xacro"
     path.write_text(f'<?xml version="1.0"?>\n<robot name="r" {XMLNS}>{links}</robot>\n')
     assert expand_scratch(path, "r", {}, [tmp_path]).count("<box ") == 40
-    monkeypatch.setattr(xacro_file, "MAX_ELEMENTS", 100)  # 161 elements: the skeleton alone has 41
+    monkeypatch.setattr(xacro_file, "MAX_ELEMENTS", 100)  # 161 elements: the skeleton alone has 2
     with pytest.raises(InputError, match="more than 100 elements"):
         expand_scratch(path, "r", {}, [tmp_path])
 
@@ -203,6 +303,7 @@ def _pieces() -> st.SearchStrategy[str]:
             '<c v="&#36;{v}"/>',
             "<!-- a comment -->",
             "some text",
+            "text with ${v} in it",
             '<n xacro:drop="1"><p/></n>',
         ]
     )

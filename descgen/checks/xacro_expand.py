@@ -10,7 +10,9 @@ again. The comparisons themselves run every time.
 
 from __future__ import annotations
 
+import contextlib
 import os
+import secrets
 import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -73,31 +75,41 @@ def expand_packages(
 
 
 def expand_scratch(top: Path, display: str, args: Mapping[str, str], package_paths: Sequence[Path]) -> str:
-    """The sandboxed expansion of ``top``, a file of a scratch folder (it is overwritten by its
-    skeleton while that expands, then written back), with its static parts set aside
-    (readers/xacro_skeleton.py) when it has any; the whole file expanded when not, or when
-    the skeleton fails (then the whole file fails too, and says why in its own terms)."""
+    """The sandboxed expansion of ``top``, a file of a scratch folder, with its static parts set
+    aside (readers/xacro_skeleton.py) when it has any: the skeleton is written beside it under a
+    random name, so ``top`` stays what the file's own includes and ``load_yaml`` read. The
+    whole file is expanded when nothing can be set aside, or when the skeleton fails (the
+    whole file then fails too, and says why in its own terms)."""
     from ..readers import xacro_skeleton
-    from ..readers.xacro_file import MAX_ELEMENTS
+    from ..readers.xacro_file import MAX_ELEMENTS, MAX_FILE_BYTES, MAX_TEXT
     from ..readers.xacro_file import expand as sandboxed_expand
 
+    skeleton = None
     whole = top.read_bytes()
-    try:
-        skeleton = xacro_skeleton.split(whole.decode("utf-8"))
-    except UnicodeDecodeError:
-        skeleton = None
+    # over the sandbox's file bound, the whole file is refused as before; xacro reads the file
+    # in the locale's encoding: a non-ASCII file is set aside only where that is UTF-8
+    if len(whole) <= MAX_FILE_BYTES and (whole.isascii() or _utf8_locale()):
+        with contextlib.suppress(UnicodeDecodeError):
+            skeleton = xacro_skeleton.split(whole.decode("utf-8"))
     if skeleton is not None:
-        top.write_text(skeleton.text, encoding="utf-8")
+        beside = top.with_name(f".{secrets.token_hex(8)}.{top.name}")
+        beside.write_text(skeleton.text, encoding="utf-8")
         try:
-            expanded = sandboxed_expand(top, display, dict(args), package_paths=package_paths).decode("utf-8")
-            joined = xacro_skeleton.join(expanded, skeleton, MAX_ELEMENTS)
+            expanded = sandboxed_expand(beside, display, dict(args), package_paths=package_paths).decode("utf-8")
+            joined = xacro_skeleton.join(expanded, skeleton, MAX_ELEMENTS, MAX_TEXT)
         except InputError:
             joined = None
         finally:
-            top.write_bytes(whole)
+            beside.unlink()
         if joined is not None:
             return joined
     return sandboxed_expand(top, display, dict(args), package_paths=package_paths).decode("utf-8")
+
+
+def _utf8_locale() -> bool:
+    import locale
+
+    return locale.getpreferredencoding(False).lower().replace("-", "").replace("_", "") == "utf8"
 
 
 def expand(files: dict[str, str], xacro_path: str) -> str:
