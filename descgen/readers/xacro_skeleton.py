@@ -11,9 +11,9 @@ text again was most of check 1 (~0.2 s of a 1000-link ``generate``).
 sibling elements (with the comments and plain text between them) by one placeholder element;
 xacro expands what is left (the skeleton) in the same sandbox; :func:`join` replaces each
 placeholder of the expansion by the nodes it stood for (copies for each further use: a
-placeholder in a macro body is cloned with it). The result is the
-tree xacro gives for the whole file (tests/test_xacro_skeleton.py compares them with
-``xacro.process_file``), not the same text: every reader of an expansion reads it as data.
+placeholder in a macro body is cloned with it). The result is the tree xacro gives for the
+whole file (tests/test_xacro_skeleton.py compares them with ``xacro.process_file``), not the
+same text: every reader of an expansion reads it as data.
 
 What this cannot mirror exactly, it leaves to the whole-file expansion (:func:`split`
 returns None): a DOCTYPE, CDATA (minidom keeps a CDATA section out of xacro's reach, lxml
@@ -85,8 +85,7 @@ def split(text: str) -> Skeleton | None:
     # would remove an xmlns:xacro attribute (a comment or text naming xmlns sends it whole too)
     if text.count("xmlns") != len(root.nsmap):
         return None
-    dynamic = _dynamic(text, root)  # kept alive: each element keeps one proxy, so `in` is identity
-    walked = set(dynamic)
+    walked = set(_dynamic(text, root))  # holding the proxies keeps each node's one identity for `in`
     # comments may join a run of static siblings unless one switches xacro:eval-comments on
     # (then a later comment may be evaluated: each stays in the skeleton)
     comments_join = "xacro:eval-comments" not in text
