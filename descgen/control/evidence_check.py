@@ -310,6 +310,9 @@ def _messages(bag: Path) -> list[Any]:
     from rosbags.rosbag2 import Reader
     from rosbags.typesys import Stores, get_typestore
 
+    from ..bag_decompress import install
+
+    install()  # the recording on disk is data: it inflates to its bound, not to whatever it holds
     ts = get_typestore(Stores.ROS2_JAZZY)
     out: list[Any] = []
     try:

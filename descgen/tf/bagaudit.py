@@ -109,6 +109,9 @@ def _bag_folder(path: Path) -> Path:
 def _open(path: Path) -> Any:
     from rosbags.rosbag2 import Reader
 
+    from ..bag_decompress import install
+
+    install()  # a chunk, message or file inflates to its bound, not to whatever it holds
     bag = _bag_folder(path)
     try:
         reader = Reader(bag)
