@@ -16,6 +16,8 @@ URDFs with their SRDFs; its meshes, ~620 distinct files, 350 MB, are resolved an
   (descgen/audit/findings_cache.py): each URDF and SRDF is read and hashed, each mesh
   reference resolved again and its file stat()ed, and the findings come from the cache. What
   a pre-commit hook or a CI job that keeps the cache pays for descriptions nobody changed.
+- one description edited: the findings cache warm but for one description, whose entry the
+  process drops first (a different one each run): what a pre-commit hook pays after an edit.
 - in process: the loop again in the first process, facts already in memory (reading,
   resolving and every rule; no hashing; the findings cache emptied before each pass).
 - warm: the synthetic 1000-link chain read and audited in process, against check_urdf on its URDF.
@@ -56,6 +58,11 @@ sys.path.insert(0, sys.argv[1])
 from descgen.audit.inputs import Options, audit
 from tests.corpus import descriptions, share
 corpus, root = descriptions(), share()
+if len(sys.argv) > 3:  # one description "edited": its findings entry gone, every other one kept
+    from descgen.audit.findings_cache import inputs
+    _, u, s = corpus[int(sys.argv[3]) % len(corpus)]
+    key = inputs(u, s, None, {}, (root,) if root else ()).key
+    os.remove(os.path.join(os.environ["DESCGEN_CACHE_DIR"], "results", "audit", key + ".json"))
 passes, cpus = [], []
 for i in range(int(sys.argv[2])):
     if i:  # a repeated pass audits for real, not from the findings the pass before kept (the mesh cache stays)
@@ -74,9 +81,12 @@ def _children_cpu() -> float:
     return used.ru_utime + used.ru_stime
 
 
-def _process(passes: int, cache: str, keep_findings: bool = False) -> tuple[float, float, dict[str, Any]]:
+def _process(
+    passes: int, cache: str, keep_findings: bool = False, edited: int | None = None
+) -> tuple[float, float, dict[str, Any]]:
     """Wall and CPU time of one fresh process running ``passes`` passes over the corpus, and its
-    report; the findings cache is emptied first unless ``keep_findings``."""
+    report; the findings cache is emptied first unless ``keep_findings``; ``edited``: the index
+    of the one description whose findings the process drops before its pass (as if edited)."""
     if not keep_findings:
         shutil.rmtree(Path(cache) / "results" / "audit", ignore_errors=True)
     # one BLAS thread, as `descgen`'s CLI sets before numpy loads (cli._one_blas_thread): this
@@ -84,7 +94,11 @@ def _process(passes: int, cache: str, keep_findings: bool = False) -> tuple[floa
     env = {"OPENBLAS_NUM_THREADS": "1", **os.environ, "DESCGEN_CACHE_DIR": cache}
     c0, t0 = _children_cpu(), time.perf_counter()
     done = subprocess.run(
-        [sys.executable, "-c", LOOP, str(ROOT), str(passes)], capture_output=True, text=True, check=True, env=env
+        [sys.executable, "-c", LOOP, str(ROOT), str(passes), *([] if edited is None else [str(edited)])],
+        capture_output=True,
+        text=True,
+        check=True,
+        env=env,
     )
     return time.perf_counter() - t0, _children_cpu() - c0, json.loads(done.stdout)
 
@@ -99,6 +113,8 @@ def _corpus_rows(check: Anchor) -> None:
         warm_runs = [_process(1, cache) for _ in range(3)]
         _process(1, cache)  # fills the findings cache
         kept_runs = [_process(1, cache, keep_findings=True) for _ in range(3)]
+        # a different description each run, spread over the corpus (its size decides the miss's cost)
+        edit_runs = [_process(1, cache, keep_findings=True, edited=k * 23) for k in range(5)]
     kept = sorted(kept_runs, key=lambda k: k[1])[len(kept_runs) // 2][2]
     assert all(cold["findings"] == k[2]["findings"] for k in kept_runs), "the findings cache changed a finding"
     warm = sorted(warm_runs, key=lambda w: w[1])[len(warm_runs) // 2][2]  # the median run's own report
@@ -124,6 +140,13 @@ def _corpus_rows(check: Anchor) -> None:
     row(hit, statistics.median(k[0] for k in kept_runs), t_check, "cold")
     row(f"{hit}, CPU", statistics.median(k[1] for k in kept_runs), c_check, "cold")
     row("  of which the audit pass, CPU", kept["cpus"][0], None, "cold")
+    assert all(cold["findings"] == e[2]["findings"] for e in edit_runs), "a partly cached audit changed a finding"
+    edit = (
+        f"audit of {files}, fresh process, one description edited since the last audit (its findings"
+        " computed, every other one's replayed; median of 5, a different one each)"
+    )
+    row(edit, statistics.median(e[0] for e in edit_runs), t_check, "cold")
+    row(f"{edit}, CPU", statistics.median(e[1] for e in edit_runs), c_check, "cold")
     again = f"audit of {files} again in the first process, mesh facts in memory (anchor: cold check_urdf)"
     row(again, statistics.median(cold["passes"][1:]), t_check, "warm")
     row(f"{again}, CPU", statistics.median(cold["cpus"][1:]), c_check, "warm")

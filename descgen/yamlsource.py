@@ -147,6 +147,8 @@ def loads(text: str, file: str = "<string>") -> Document:
         mark = exc.problem_mark or exc.context_mark
         line, col = (mark.line + 1, mark.column + 1) if mark else (0, 0)
         what = " ".join((exc.problem or "malformed YAML").split())  # one line per finding
+        if "nesting depth" in what:  # libyaml's own bound (PyYAML 6.0.4 on): the same refusal as ours
+            raise _fail(file, "YAML nested too deeply", DEPTH_HINT, line, col) from None
         raise _fail(file, f"malformed YAML: {what}", "fix the YAML syntax at this position", line, col) from None
     except yaml.reader.ReaderError as exc:
         line, col = _line_col(text, exc.position)
