@@ -156,6 +156,82 @@ def test_an_lz4_chunk_is_cut_at_one_byte_past_its_declared_size() -> None:
     assert peak < 4 * MIB
 
 
+@pytest.mark.parametrize("codec", ["zstd", "lz4"])
+def test_a_large_declared_size_reserves_nothing(codec: str) -> None:
+    """A tiny frame declaring 200 MiB: the output grows with what inflates, in steps."""
+    bag_decompress.install()
+    payload = zstd.compress(b"z" * 1000) if codec == "zstd" else lz4.frame.compress(b"z" * 1000)
+    peak, out = _peak(lambda: storage_mcap.DECOMPRESSORS[codec](payload, 200 * MIB))
+    assert out == b"z" * 1000
+    assert peak < 16 * MIB, f"{peak / MIB:.0f} MiB"
+
+
+def test_a_chunk_of_too_many_frames_is_refused() -> None:
+    skippable = struct.pack("<II", SKIPPABLE, 0)
+    fine = zstd.compress(b"q") + skippable * (bag_decompress.MAX_FRAMES - 1)
+    assert zstd.decompress(fine) == b"q" == bag_decompress.zstd_at_most(fine, 100)
+    with pytest.raises(ReaderError, match="zstd frames"):
+        bag_decompress.zstd_at_most(fine + skippable, 100)
+
+
+@pytest.mark.parametrize(("size", "refused"), [(100, False), (101, True)])
+def test_the_file_bound_is_exact(size: int, refused: bool) -> None:
+    """As rosbags copies a compressed file out (shutil.copyfileobj): a file of exactly the
+    bound passes, one byte more does not."""
+    import io
+    import shutil
+
+    src = bag_decompress._AtMost(io.BytesIO(bytes(size)), bag_decompress._Budget(100))
+    if refused:
+        with pytest.raises(ReaderError, match="more than"):
+            shutil.copyfileobj(src, io.BytesIO(), 7)
+    else:
+        shutil.copyfileobj(src, io.BytesIO(), 7)
+        assert bag_decompress._AtMost(io.BytesIO(bytes(size)), bag_decompress._Budget(100)).read() == bytes(size)
+
+
+def test_chunks_held_at_once_beyond_the_bound_are_refused_before_inflating(
+    plain: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Six 16 MiB chunks of one instant: rosbags' merge inflates all six before the first
+    message. Each is within the chunk bound; together they are over a 32 MiB live bound, and
+    the chunk index says so before anything is inflated."""
+    bag = tmp_path / "bag"
+    with Reader(plain) as reader:
+        conns = list(reader.connections)
+        msgs = list(reader.messages())
+    writer = Writer(bag, version=8, storage_plugin=StoragePlugin.MCAP)
+    writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
+    big = b"\x00\x01\x00\x00" + struct.pack("<I", 16 * MIB + 1) + bytes(16 * MIB) + b"\x00"
+    with writer:
+        new = {c.id: writer.add_connection(c.topic, c.msgtype, typestore=TS) for c in conns}
+        filler = writer.add_connection("/filler", "std_msgs/msg/String", typestore=TS)
+        for _ in range(6):
+            writer.write(filler, msgs[0][1], big)
+        for c, t, raw in msgs:
+            writer.write(new[c.id], t, raw)
+    expected = _outcomes(plain)
+    assert _outcomes(bag) == expected  # within the default bound: audited as the plain one
+    monkeypatch.setattr(bag_decompress, "MAX_LIVE_BYTES", 32 * MIB)
+    peak, outcome = _peak(lambda: bagaudit.audit(bag, "odom"))
+    assert isinstance(outcome, InputError), outcome
+    (f,) = outcome.findings
+    assert f.code == "BAG001" and "overlap in time" in f.message
+    assert peak < 8 * MIB, f"{peak / MIB:.0f} MiB"
+
+
+def test_control_evidence_is_read_within_the_bound(plain: Path, tmp_path: Path) -> None:
+    """`check` reads the committed control recording back (descgen/control/evidence_check.py):
+    a bomb there is refused as one in tf-audit."""
+    from descgen.control import evidence_check
+
+    bag = tmp_path / "bag"
+    _chunk_bomb(plain, bag)
+    peak, outcome = _peak(lambda: evidence_check._messages(bag))
+    assert isinstance(outcome, ValueError) and "size mismatch" in str(outcome), outcome
+    assert peak < 32 * MIB, f"{peak / MIB:.0f} MiB"
+
+
 @pytest.mark.parametrize(
     ("frames", "expected"),
     [
@@ -207,6 +283,31 @@ def test_a_message_inflating_past_the_bound_is_refused(
     assert peak < 32 * MIB, f"{peak / MIB:.0f} MiB"
 
 
+def test_the_files_of_one_recording_share_the_bound(
+    plain: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Two compressed files of 5 MiB each under an 8 MiB bound: each alone is within it, the
+    recording is not (rosbags inflates every file before it opens any)."""
+    monkeypatch.setattr(bag_decompress, "MAX_FILE_BYTES", 8 * MIB)
+    bag = tmp_path / "bag"
+    _convert(plain, bag, CompressionMode.FILE, pad=5 * MIB)  # one more message of 5 MiB
+    (stored,) = bag.glob("*.zstd")
+    assert 5 * MIB < len(zstd.decompress(stored.read_bytes())) < 6 * MIB
+    one = bagaudit.audit(bag, "odom")  # within the bound alone
+    second = stored.with_name("second_" + stored.name)
+    second.write_bytes(stored.read_bytes())
+    meta_file = bag / "metadata.yaml"
+    meta = yaml.safe_load(meta_file.read_text())
+    info = meta["rosbag2_bagfile_information"]
+    info["relative_file_paths"] = [*info["relative_file_paths"], second.name]
+    info["files"] = [*info["files"], {**info["files"][0], "path": second.name}]
+    meta_file.write_text(yaml.safe_dump(meta))
+    with pytest.raises(InputError) as refused:
+        bagaudit.audit(bag, "odom")
+    (f,) = refused.value.findings
+    assert one.lookups and f.code == "BAG001" and "inflate to more than 8 MiB" in f.message
+
+
 def test_a_file_inflating_past_the_bound_is_refused(
     plain: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -221,5 +322,5 @@ def test_a_file_inflating_past_the_bound_is_refused(
     peak, outcome = _peak(lambda: bagaudit.audit(bag, "odom"))
     assert isinstance(outcome, InputError), outcome
     (f,) = outcome.findings
-    assert f.code == "BAG001" and "inflates to more than 8 MiB" in f.message
+    assert f.code == "BAG001" and "inflate to more than 8 MiB" in f.message
     assert peak < 32 * MIB, f"{peak / MIB:.0f} MiB"

@@ -19,6 +19,7 @@ runs and compares as described above.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import dataclasses
 import io
@@ -307,16 +308,14 @@ def _same_recording(mine: Path, theirs: Path, name: str) -> bool:
 
 def _messages(bag: Path) -> list[Any]:
     """Every message of a rosbag2 folder, decoded: [topic, log time, stamp, names, positions]."""
-    from rosbags.rosbag2 import Reader
     from rosbags.typesys import Stores, get_typestore
 
-    from ..bag_decompress import install
+    from ..bag_decompress import open_reader  # the recording on disk is data: it inflates to a bound
 
-    install()  # the recording on disk is data: it inflates to its bound, not to whatever it holds
     ts = get_typestore(Stores.ROS2_JAZZY)
     out: list[Any] = []
     try:
-        with Reader(bag) as reader:
+        with contextlib.closing(open_reader(bag)) as reader:
             for conn, t, raw in reader.messages():
                 msg: Any = ts.deserialize_cdr(raw, conn.msgtype)
                 stamp = int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)

@@ -107,15 +107,11 @@ def _bag_folder(path: Path) -> Path:
 
 
 def _open(path: Path) -> Any:
-    from rosbags.rosbag2 import Reader
+    from ..bag_decompress import open_reader  # chunks, messages and files inflate to a bound
 
-    from ..bag_decompress import install
-
-    install()  # a chunk, message or file inflates to its bound, not to whatever it holds
     bag = _bag_folder(path)
     try:
-        reader = Reader(bag)
-        reader.open()
+        reader = open_reader(bag)
     except Exception as exc:  # rosbags raises ReaderError, YAML and OS errors on unusable input
         raise _unusable(
             "BAG001",
