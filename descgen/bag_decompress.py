@@ -125,20 +125,28 @@ def zstd_at_most(data: bytes, limit: int) -> bytes:
         if frames > MAX_FRAMES:
             raise _error(f"more than {MAX_FRAMES} zstd frames in one chunk or message")
         d = zstd.ZstdDecompressor()
-        feed = rest
-        while room > 0 and not d.eof:
-            part = d.decompress(feed, max_length=min(room, STEP))
-            feed = b""
-            out.append(part)
-            room -= len(part)
-            if not part and d.needs_input:
-                break
+        room = _one_frame(d, rest, room, out)
         if not d.eof:
             if room > 0:  # wanted more and the input ended: what zstd.decompress refuses too
                 raise _error("zstd data ends before its frame does")
             break
         rest = d.unused_data
     return b"".join(out)
+
+
+def _one_frame(d: Any, data: bytes, room: int, out: list[bytes]) -> int:
+    """Inflate one frame of ``data`` with the decompressor ``d`` (zstd's or lz4's, which share
+    this interface) into ``out``, in steps of at most STEP bytes, until the frame ends, the
+    input runs out or ``room`` is used up; the room left."""
+    feed = data
+    while room > 0 and not d.eof:
+        part: bytes = d.decompress(feed, max_length=min(room, STEP))
+        feed = b""
+        out.append(part)
+        room -= len(part)
+        if not part and d.needs_input:
+            break
+    return room
 
 
 def _zstd_module() -> Any:
@@ -154,15 +162,7 @@ def lz4_at_most(data: bytes, limit: int) -> bytes:
 
     d = LZ4FrameDecompressor()
     out: list[bytes] = []
-    room = limit
-    feed = data
-    while room > 0 and not d.eof:
-        part: bytes = d.decompress(feed, max_length=min(room, STEP))
-        feed = b""
-        out.append(part)
-        room -= len(part)
-        if not part and d.needs_input:
-            break
+    room = _one_frame(d, data, limit, out)
     if not d.eof and room > 0:
         raise _error("lz4 data ends before its frame does")
     return b"".join(out)
@@ -236,8 +236,3 @@ class _AtMost:
         if budget.left < 0:
             raise _error(f"the recording's compressed files inflate to more than {budget.limit // MIB} MiB")
         return data
-
-    def readinto(self, buffer: Any) -> int:
-        data = self.read(len(buffer))
-        buffer[: len(data)] = data
-        return len(data)
