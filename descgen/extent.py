@@ -271,10 +271,12 @@ def _within_for_every_axis(link: Link, hulls: list[Hull], margin: float) -> bool
     when u^T I u <= margin * m * reach(u)^2 for every unit axis u through the centre of
     mass, hence for the principal ones whatever numpy's vectors are. reach(u)^2 is at least
     the mean over the sampled points p of their squared distance from the axis, tr S - u^T S u
-    with S the mean of r r^T (r = p - com); so it holds when the largest eigenvalue of
-    I' + k S is at most k tr S (k = margin * m, I' the tensor turned into the link frame),
-    with that eigenvalue's upper bound from principal.bounded and a relative slack of 1e-9
-    over everything rounding could move (numpy's vectors are unit and eigen to ~1e-15)."""
+    with S the mean of r r^T (r = p - com), plus pad^2 for the least pad of the hulls (a
+    sphere's radius: every point of a hull is that much farther out, and (a + b)^2 >= a^2 + b^2
+    for a, b >= 0); so it holds when the largest eigenvalue of I' + k S is at most
+    k (tr S + pad^2) (k = margin * m, I' the tensor turned into the link frame), with that
+    eigenvalue's upper bound from principal.bounded and a relative slack of 1e-9 over
+    everything rounding could move (numpy's vectors are unit and eigen to ~1e-15)."""
     i = link.inertial
     assert i is not None and i.inertia is not None and i.mass is not None
     com = i.origin.xyz
@@ -283,13 +285,14 @@ def _within_for_every_axis(link: Link, hulls: list[Hull], margin: float) -> bool
         return False
     n = len(rs)
     s = [[sum(r[a] * r[b] for r in rs) / n for b in range(3)] for a in range(3)]
+    pad = min(h.pad for h in hulls)
     turn = rpy_rot(i.origin.rpy)
     tensor = i.inertia.matrix()
     # I' = R I R^T: the tensor is written in the inertial frame, the points in the link frame
     ri = [[sum(turn[a][c] * tensor[c][b] for c in range(3)) for b in range(3)] for a in range(3)]
     turned = [[sum(ri[a][c] * turn[b][c] for c in range(3)) for b in range(3)] for a in range(3)]
     k = margin * i.mass * (1 - 1e-9)
-    total = k * (s[0][0] + s[1][1] + s[2][2])
+    total = k * (s[0][0] + s[1][1] + s[2][2] + pad * pad)
     both = tuple(tuple(turned[a][b] + k * s[a][b] for b in range(3)) for a in range(3))
     found = principal.bounded_matrix(both)
     if found is None or not math.isfinite(total):

@@ -9,7 +9,6 @@ and the proofs ask here, so a rule module holds rules only.
 from __future__ import annotations
 
 import math
-import statistics
 from collections.abc import Callable
 
 from .extent import MARKER
@@ -158,5 +157,9 @@ def static_load(j: Joint, frame: Frame, mass: float, moment: Vec) -> float:
 def robot_scale(robot: Robot) -> float:
     """Median length of the non-zero joint offsets: the size of a typical link."""
     lengths = [math.hypot(*j.origin.xyz) for j in robot.joints]
-    lengths = [x for x in lengths if x > 1e-4]
-    return statistics.median(lengths) if lengths else 0.1
+    lengths = sorted(x for x in lengths if x > 1e-4)
+    if not lengths:
+        return 0.1
+    # statistics.median, written out: its import (random, decimal, fractions) cost more than the audit's use
+    mid = len(lengths) // 2
+    return lengths[mid] if len(lengths) % 2 else (lengths[mid - 1] + lengths[mid]) / 2

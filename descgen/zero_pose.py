@@ -52,6 +52,25 @@ def forward(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, Fra
     return poses
 
 
+def forward_from(
+    robot: Robot, q: Mapping[str, float], base: Mapping[str, Frame], base_q: Mapping[str, float]
+) -> dict[str, Frame]:
+    """``forward(robot, q)`` given ``base = forward(robot, base_q)``: a link is composed again
+    only below a joint whose value differs (a sweep moves one joint and its followers); every
+    other link keeps base's frame, the very floats forward would compute again."""
+    values = mimic.resolve(robot, q)
+    before = mimic.resolve(robot, base_q)
+    poses = dict(base)
+    moved: set[str] = set()
+    for j in robot.tree_joints():
+        assert j.parent is not None and j.child is not None  # tree_joints yields only linked joints
+        v = values.get(j.name, 0.0)
+        if j.parent in moved or v != before.get(j.name, 0.0):
+            poses[j.child] = compose(poses[j.parent], joint_frame(j, v))
+            moved.add(j.child)
+    return poses
+
+
 _AT_ZERO: list[tuple[Robot, dict[str, Frame]]] = []  # the zero poses of the last few robots
 _AT_ZERO_KEPT = 4
 

@@ -86,8 +86,9 @@ def test_check_imports_no_heavy_library(probe: dict[str, dict[str, object]]) -> 
     check = probe["check"]
     assert check["code"] == 0  # the committed example is current: check really ran every proof
     loaded = set(check["modules"])  # type: ignore[call-overload]
-    assert {"lxml", "numpy", "xacro"} <= loaded
-    assert loaded & CHECK_HEAVY == set()
+    assert {"lxml", "xacro"} <= loaded  # the suite runs without a result cache: xacro expanded
+    # nor numpy: the sweep table check computes is plain-float kinematics (descgen/sweep/motion.py)
+    assert loaded & (CHECK_HEAVY | {"numpy"}) == set()
 
 
 @pytest.mark.e2e

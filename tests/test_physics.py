@@ -124,3 +124,21 @@ def test_mm_shows_metres_in_millimetres() -> None:
     # FK's rounding residue (-1e-17 m) and anything under -0.05 mm show as 0.0, not -0.0;
     # -0.06 mm rounds to -0.1 and keeps its sign
     assert display.mm((-1e-17, -4.9e-5, -0.00006)) == "0.0, 0.0, -0.1"
+
+
+@pytest.mark.parametrize(
+    "offsets",
+    [[], [0.0], [0.3], [0.3, 0.1], [0.5, 0.00005, 0.2, 0.1], [0.1, 0.4, 0.2, 0.0, 0.7], [0.2] * 4],
+    ids=["none", "only-zero", "one", "two", "even", "odd", "equal"],
+)
+def test_robot_scale_is_the_median_joint_offset(offsets: list[float]) -> None:
+    import statistics  # the oracle: robot_scale writes the median out to spare the audit its import
+
+    links = [Link(f"l{i}") for i in range(len(offsets) + 1)]
+    joints = [
+        Joint(f"j{i}", "fixed", f"l{i}", f"l{i + 1}", Pose((0.0, d, 0.0), (0.0, 0.0, 0.0)))
+        for i, d in enumerate(offsets)
+    ]
+    robot = Robot("r", tuple(links), tuple(joints))
+    kept = [d for d in offsets if d > 1e-4]
+    assert physics.robot_scale(robot) == (statistics.median(kept) if kept else 0.1)

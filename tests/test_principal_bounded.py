@@ -18,7 +18,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from descgen import extent, principal
@@ -65,10 +65,19 @@ def tensors(draw: st.DrawFn) -> Inertia:
     return Inertia(m[0, 0], m[0, 1], m[0, 2], m[1, 1], m[1, 2], m[2, 2])
 
 
+def _lapack_within_its_bound(t: Inertia) -> bool:
+    """False for a tensor with a nonzero entry whose square is subnormal (|v| < 1.5e-154) beside
+    entries that are not: LAPACK's dsyevd (OpenBLAS, numpy 2) then misses by far more than its
+    backward-error bound (test below); no inertia is written with such entries."""
+    values = [abs(v) for v in (t.ixx, t.ixy, t.ixz, t.iyy, t.iyz, t.izz)]
+    return all(v == 0 or v * v >= sys.float_info.min for v in values) or max(values) ** 2 < sys.float_info.min
+
+
 @settings(max_examples=1500, deadline=None)
 @given(tensors())
 def test_numpys_eigenvalues_lie_within_the_bound(t: Inertia) -> None:
     # the property every use relies on: numpy's k-th value is within err of ours
+    assume(_lapack_within_its_bound(t))
     b = principal._bounded(principal._key(t))
     want = _numpy(t)
     if b is None:
@@ -101,9 +110,12 @@ def test_a_zero_tensor_is_numpys_for_every_sign_pattern(signs: tuple[float, ...]
 
 
 def _old_rule(t: Inertia, test: object) -> str | None:
-    """The rules before this change: numpy's eigenvalues, tested and printed."""
+    """The rules computed from numpy's eigenvalues: tested, and printed as the message
+    promises (4 significant digits; 0 for a moment within 1e-10 of the largest entry)."""
     eig = tuple(_numpy(t))
-    return rules._fmt(eig) if test(eig) else None  # type: ignore[operator]
+    zero = 1e-10 * max(abs(v) for row in t.matrix() for v in row)
+    shown = ["0" if abs(v) <= zero else f"{v:.4g}" for v in eig]
+    return "[" + ", ".join(shown) + "]" if test(eig) else None  # type: ignore[operator]
 
 
 edge = st.sampled_from(
@@ -115,18 +127,65 @@ edge = st.sampled_from(
         Inertia(1.0, 0.0, 0.0, 1.0, 0.0, 2.0 - 1e-9),  # on INER004's edge
         Inertia(1e-3, 1e-4, 0.0, 1e-3, 0.0, 2.2e-3),  # breaks the triangle inequality
         Inertia(2e-15, 1e-16, 0.0, 1.0, 0.0, 1.0),  # on INER003's edge
+        Inertia(1e-4, 0.0, 1e-4, 5e-4, 0.0, 1e-4),  # moments 0, 2e-4, 5e-4: numpy's 0 is +2.7e-20 here
+        Inertia(1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6),  # hyq's feet: rank one
     ]
 )
+
+
+def test_where_lapack_misses_the_plain_floats_do_not() -> None:
+    # [[e, 0, a], [0, 0, e], [a, e, 0]] has eigenvalues -a + O(e), O(e^2 / a), a + O(e) (by
+    # hand: e = 0 gives -a, 0, a, and each moves by at most |E| = 2e, Weyl); with e = 1e-160,
+    # e^2 is subnormal and LAPACK answers +-0.37499855, off by 4e-6 relative
+    e, a = 1e-160, 0.375
+    t = Inertia(e, 0.0, a, 0.0, e, 0.0)
+    b = principal._bounded(principal._key(t))
+    assert b is not None
+    for k, exact in enumerate((-a, 0.0, a)):
+        assert b.low(k) - 2 * e <= exact <= b.high(k) + 2 * e
+    assert not _lapack_within_its_bound(t)
 
 
 @settings(max_examples=800, deadline=None)
 @given(st.one_of(tensors(), edge))
 def test_iner003_and_iner004_decide_and_print_as_with_numpy(t: Inertia) -> None:
+    assume(_lapack_within_its_bound(t))
     with numpy_not_loaded():
         got3 = rules._verdict(t, rules._not_positive_definite, rules._settled_not_pd)
         got4 = rules._verdict(t, rules._breaks_triangle, rules._settled_triangle)
     assert got3 == _old_rule(t, rules._not_positive_definite)
     assert got4 == _old_rule(t, rules._breaks_triangle)
+
+
+@pytest.mark.parametrize("plain", [True, False], ids=["plain floats", "numpy"])
+def test_a_moment_that_is_zero_in_truth_prints_as_0_and_decides_one_finding(plain: bool) -> None:
+    # [[a, 0, a], [0, 5a, 0], [a, 0, a]] has principal moments 0, 2a, 5a (by hand: x - z is in
+    # the kernel, x + z gives 2a, y gives 5a). LAPACK's 0 is noise whose sign depends on the
+    # build (+2.7e-20 with this OpenBLAS): printed as such, and deciding INER004 by that sign,
+    # the rules reported "[2.711e-20, 0.0002, 0.0005]" twice, as not positive definite and as
+    # breaking the triangle inequality.
+    t = Inertia(1e-4, 0.0, 1e-4, 5e-4, 0.0, 1e-4)
+    principal._moments.cache_clear()
+    if plain:
+        with numpy_not_loaded():
+            got3 = rules._verdict(t, rules._not_positive_definite, rules._settled_not_pd)
+            got4 = rules._verdict(t, rules._breaks_triangle, rules._settled_triangle)
+    else:
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(principal, "bounded", lambda t: None)  # numpy decides and prints
+            got3 = rules._verdict(t, rules._not_positive_definite, rules._settled_not_pd)
+            got4 = rules._verdict(t, rules._breaks_triangle, rules._settled_triangle)
+    assert got3 == "[0, 0.0002, 0.0005]"
+    assert got4 is None
+
+
+def test_a_small_moment_that_is_not_zero_still_prints() -> None:
+    # a thin rod: 1e-9 of the largest entry is a moment, printed; 1e-11 of it is rounding
+    with numpy_not_loaded():
+        rod = Inertia(1e-9, 0.0, 0.0, 1.0, 0.0, 1.0)
+        assert rules._verdict(rod, lambda e: True, lambda b: True) == "[1e-09, 1, 1]"
+        flat = Inertia(1e-11, 0.0, 0.0, 1.0, 0.0, 1.0)
+        assert rules._verdict(flat, lambda e: True, lambda b: True) == "[0, 1, 1]"
 
 
 def test_a_finding_is_printed_from_plain_floats_only_when_they_print_alike(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -169,6 +228,21 @@ def test_the_screen_settles_a_plain_full_tensor() -> None:
         assert not extent._within_for_every_axis(link, hulls, 0.01)  # a bound it cannot prove is not claimed
 
 
+def test_the_screen_settles_a_sphere_about_its_centre() -> None:
+    # a sphere's hull is its centre grown by its radius: no sampled point is off the axis, so
+    # only the radius bounds the reach. 0.1 kg within 0.02 m: at most m r^2 = 4e-5 about any
+    # axis; the rank-one tensor's largest moment is 3e-6 (by hand: the trace)
+    from descgen.model import Collision, Inertial, Pose, Sphere
+
+    t = Inertia(1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6)
+    link = Link("l", collisions=(Collision(Sphere(0.02), Pose()),), inertial=Inertial(0.1, Pose(), t))
+    hulls = extent.bounding_hulls(link)
+    assert hulls is not None
+    with numpy_not_loaded():
+        assert extent._within_for_every_axis(link, hulls, 1.0)  # 3e-6 <= 4e-5
+        assert not extent._within_for_every_axis(link, hulls, 0.07)  # 0.07 * 4e-5 = 2.8e-6 < 3e-6
+
+
 def test_auditing_a_urdf_with_full_tensors_does_not_import_numpy(tmp_path: Path) -> None:
     urdf = tmp_path / "r.urdf"
     urdf.write_text(
@@ -179,19 +253,28 @@ def test_auditing_a_urdf_with_full_tensors_does_not_import_numpy(tmp_path: Path)
         '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
         '<link name="b"><inertial><mass value="0.5"/>'
         '<inertia ixx="1e-3" ixy="1e-4" ixz="0" iyy="1e-3" iyz="0" izz="2.5e-3"/></inertial>'
-        '<visual><geometry><cylinder radius="0.05" length="0.1"/></geometry></visual></link></robot>'
+        '<visual><geometry><cylinder radius="0.05" length="0.1"/></geometry></visual></link>'
+        '<joint name="k" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 1 0"/>'
+        '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'  # c: hyq's feet, rank one
+        '<link name="c"><inertial><mass value="0.1"/>'
+        '<inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/></inertial>'
+        '<collision><geometry><sphere radius="0.02"/></geometry></collision></link></robot>'
     )
     code = (
         "import sys; from pathlib import Path; from descgen.audit.inputs import audit; "
         f"found = audit(Path({str(urdf)!r})); "
-        "print('numpy' in sys.modules); print(sorted(f.code for f in found if f.code.startswith('INER')))"
+        "print('numpy' in sys.modules); print(sorted(f.code for f in found if f.code.startswith('INER'))); "
+        "print([f.message for f in found if f.code == 'INER003'])"
     )
     env = {"PATH": "/usr/bin:/bin", "DESCGEN_CACHE_DIR": ""}
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True, env=env)
-    loaded, codes = done.stdout.split("\n")[:2]
+    loaded, codes, messages = done.stdout.split("\n")[:3]
     assert loaded == "False"
     # link b's moments [0.0009, 0.0011, 0.0025] break the triangle inequality: found without numpy
     assert "INER004" in codes
+    # c's moments are 0, 0, 3e-6 (by hand: rank one, trace 3e-6): not positive definite, and
+    # printed without numpy though LAPACK's zeros would be noise of either sign
+    assert messages == str(["link 'c' inertia has principal moments [0, 0, 3e-06]: not positive definite"])
 
 
 near = st.sampled_from([0.0, 1e-15, 1e-12, 1.0, 2.0, 2.0 / (1 - 1e-9), 3.0, -1e-15, 5e-16])

@@ -13,8 +13,8 @@ runs is compared with a fresh render.
 
 The table itself (:func:`context`, forward kinematics at every grid step, most of a warm
 ``check``'s sweep) is kept in the result cache (descgen/result_cache.py) under the hash of the
-model's values (every field but where it was written), the collision runs, the steps,
-descgen's own source and numpy's version: an unchanged robot is shown from the cache, and the
+model's values (every field but where it was written), the collision runs, the steps and
+descgen's own source: an unchanged robot is shown from the cache, and the
 file is still rendered and compared with the committed one every time.
 """
 
@@ -85,7 +85,7 @@ def _cache_key(robot: Robot) -> str | None:
         "steps": DEFAULT_STEPS,
         "runs": [[r.joint, r.link1, r.link2, r.first, r.last] for r in runs],
     }
-    return result_cache.key(_KIND, inputs, ("numpy",))
+    return result_cache.key(_KIND, inputs)  # plain-float kinematics: no library computes it
 
 
 # the context's shape, checked on what the cache gives back (an entry is data, never trusted)

@@ -1,6 +1,8 @@
 """Where each joint moves the robot: the sweep grid, the links that move, and their direction.
 
-Pure forward kinematics (``descgen.kinematics``, numpy); no pinocchio. A joint is swept from
+Pure forward kinematics in plain floats (``descgen.zero_pose``, held to ``descgen.kinematics``
+by the tests), so a ``check`` that computes the sweep does not import numpy (~60 ms); no
+pinocchio. A joint is swept from
 its lower to its upper limit in ``steps`` equal steps, both limits exactly; a continuous
 joint through one turn. Mimic followers are not swept: they move with their leader
 (``descgen.mimic`` sets them at every step), and the links they carry count as moving.
@@ -16,15 +18,14 @@ inside the limits).
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from itertools import chain
 
 from .. import mimic
 from ..model import ONE_DOF, ROTATING, Joint, Robot
 from ..record import record
-
-if TYPE_CHECKING:  # numpy and the numpy kinematics are imported by the functions that compute: check
-    import numpy as np  # reads the sweep table from the result cache and needs only this module's words
+from ..rigid import Frame, compose, inverse, norm, rotate
 
 MOVES = 1e-9  # a pose change below this (metres, rotation-matrix entries) is no motion
 
@@ -112,13 +113,17 @@ def analyse(
     disabled: set[frozenset[str]],
 ) -> JointMotion:
     """Which links ``j`` moves over ``values``, how far, and which pairs could collide."""
-    import numpy as np
+    from ..zero_pose import forward, forward_from
 
-    from .. import kinematics
+    base = forward(robot, state)
 
-    poses = [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in values]
+    def at_value(v: float) -> dict[str, Frame]:
+        return forward_from(robot, joint_values(robot, state, j.name, v), base, state)
+
+    poses = [at_value(v) for v in values]
     first = poses[0]
-    moving = {n for p in poses[1:] for n, m in p.items() if n in first and np.max(np.abs(m - first[n])) > MOVES}
+    # a link above the joint keeps the very frame object in every pose (zero_pose.forward_from)
+    moving = {n for p in poses[1:] for n, m in p.items() if n in first and m is not first[n] and _apart(m, first[n])}
     q0 = state.get(j.name, 0.0)
     quarter = quarter_turn(j, values, continuous)
     if continuous:
@@ -128,17 +133,13 @@ def analyse(
         span = (start, start + math.pi / 2)
     else:
         span = (values[0], values[-1])
-    at = (
-        [kinematics.forward(robot, joint_values(robot, state, j.name, v)) for v in span]
-        if quarter
-        else [poses[0], poses[-1]]
-    )
+    at = [at_value(v) for v in span] if quarter else [poses[0], poses[-1]]
     tips = _group_tips(robot)
     parents = {jj.parent for jj in robot.joints if jj.child in moving}
     moved = tuple(
         Moved(
             lk.name,
-            _vec(at[1][lk.name][:3, 3] - at[0][lk.name][:3, 3]),
+            _minus(at[1][lk.name][1], at[0][lk.name][1]),
             "group" if lk.name in tips else "" if lk.name in parents else "end",
         )
         for lk in robot.links
@@ -162,24 +163,62 @@ def quarter_turn(j: Joint, values: Sequence[float], continuous: bool) -> bool:
     return continuous or (j.type in ROTATING and values[-1] - values[0] > math.pi)
 
 
+def _entries(f: Frame) -> tuple[float, ...]:
+    """The 12 entries of the frame's 4x4 matrix that can change (its last row cannot)."""
+    r, t = f
+    return r[0] + r[1] + r[2] + t
+
+
+def _gap(a: tuple[float, ...], b: tuple[float, ...]) -> float:
+    """The largest ``|a_i - b_i|`` (as ``np.max(np.abs(a - b))``; map and max keep the loop in C)."""
+    return float(max(map(abs, map(operator.sub, a, b))))
+
+
+def _apart(a: Frame, b: Frame) -> bool:
+    """Some entry of the two poses differs by more than :data:`MOVES`."""
+    return _gap(_entries(a), _entries(b)) > MOVES
+
+
 def _pairs(
-    poses: Sequence[Mapping[str, np.ndarray]], geometry: Sequence[str], disabled: set[frozenset[str]]
+    poses: Sequence[Mapping[str, Frame]], geometry: Sequence[str], disabled: set[frozenset[str]]
 ) -> tuple[tuple[str, str], ...]:
     """Pairs of links with geometry, not disabled, whose relative pose changes in the sweep
-    (two links both fixed, or moving together, collide at every step or at none: not this joint's)."""
-    import numpy as np
+    (two links both fixed, or moving together, collide at every step or at none: not this joint's).
 
+    Each link's pose relative to its pose at the first step, over every step (a pair's relative
+    pose changes exactly when these differ: A0^-1 B0 = A^-1 B <=> A A0^-1 = B B0^-1). One joint
+    moves, so these fall into a few groups that move alike; a link joins the first group whose
+    first member it is within MOVES/2 of at every entry. Two members of a group are then within
+    MOVES of each other (triangle inequality), and two groups whose first members are more than
+    2 MOVES apart somewhere hold no pair within MOVES: pairs are decided group by group, and only
+    a pair of groups nearer than that is compared member by member."""
     names = [n for n in geometry if n in poses[0]]
-    # each link's pose relative to its pose at the first step: a pair's relative pose changes
-    # exactly when these differ (A0^-1 B0 = A^-1 B  <=>  A A0^-1 = B B0^-1)
-    inv0 = {n: np.linalg.inv(poses[0][n]) for n in names}
-    deltas = {n: np.stack([p[n] @ inv0[n] for p in poses]) for n in names}
+    seq = {n: _relative(poses, n) for n in names}
+    firsts: list[tuple[float, ...]] = []
+    group: dict[str, int] = {}
+    for n in names:
+        group[n] = next((k for k, f in enumerate(firsts) if _gap(seq[n], f) <= MOVES / 2), len(firsts))
+        if group[n] == len(firsts):
+            firsts.append(seq[n])
+    far = {(g, h): _gap(firsts[g], firsts[h]) > 2 * MOVES for g in range(len(firsts)) for h in range(len(firsts))}
     out = []
     for i, a in enumerate(names):
         for b in names[i + 1 :]:
-            if frozenset((a, b)) not in disabled and np.max(np.abs(deltas[a] - deltas[b])) > MOVES:
+            ga, gb = group[a], group[b]
+            if ga == gb or frozenset((a, b)) in disabled:
+                continue
+            if far[ga, gb] or _gap(seq[a], seq[b]) > MOVES:
                 out.append((a, b))
     return tuple(out)
+
+
+def _relative(poses: Sequence[Mapping[str, Frame]], name: str) -> tuple[float, ...]:
+    """The entries of ``name``'s pose relative to its first one, step after step (a step whose
+    frame is the first's own object gives the first step's entries: the same floats)."""
+    first = poses[0][name]
+    back = inverse(first)
+    still = _entries(compose(first, back))
+    return tuple(chain.from_iterable(still if p[name] is first else _entries(compose(p[name], back)) for p in poses))
 
 
 def _group_tips(robot: Robot) -> set[str]:
@@ -191,21 +230,21 @@ def _axis_at_state(robot: Robot, j: Joint, state: Mapping[str, float]) -> tuple[
     """The joint axis in the root frame with every joint at the state."""
     if j.axis is None or j.parent is None or j.type not in (*ROTATING, "prismatic"):
         return None
-    import numpy as np
+    from ..zero_pose import forward, joint_frame
 
-    from .. import kinematics
-
-    poses = kinematics.forward(robot, joint_values(robot, state, j.name, state.get(j.name, 0.0)))
+    poses = forward(robot, joint_values(robot, state, j.name, state.get(j.name, 0.0)))
     if j.parent not in poses:
         return None
-    rot = (poses[j.parent] @ kinematics.joint_transform(j))[:3, :3]
-    axis = rot @ np.asarray(j.axis, dtype=float)
-    n = float(np.linalg.norm(axis))
-    return _vec(axis / n) if n > 0 else None
+    # the joint's fixed frame (its origin): the axis is written in it, and turning about the
+    # axis does not move the axis
+    rot = compose(poses[j.parent], joint_frame(j))[0]
+    axis = rotate(rot, j.axis)
+    n = norm(axis)
+    return (axis[0] / n, axis[1] / n, axis[2] / n) if n > 0 else None
 
 
-def _vec(v: np.ndarray) -> tuple[float, float, float]:
-    return (float(v[0]), float(v[1]), float(v[2]))
+def _minus(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, float]:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
 # --- words for people ------------------------------------------------------------------------------

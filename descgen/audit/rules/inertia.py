@@ -124,7 +124,8 @@ def inertia_not_positive_definite(robot: Robot) -> Iterator[Finding]:
 @rule("INER004", "inertia-triangle-inequality", "error")
 def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Checks the principal moments satisfy A + B >= C for every ordering.
+    Checks the principal moments of a positive definite tensor (INER003 reports the others)
+    satisfy A + B >= C for every ordering.
     ## Why is this bad?
     No real mass distribution violates it; the numbers were mistyped or mixed units.
     """
@@ -144,12 +145,19 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
             )
 
 
-def _fmt(values: object) -> str:
-    return "[" + ", ".join(f"{float(v):.4g}" for v in values) + "]"  # type: ignore[attr-defined]
+# A principal moment within this fraction of the tensor's largest entry is zero at any
+# precision a CAD export or a hand computation has: it is printed as 0, not as the rounding
+# noise LAPACK leaves there (-1.993e-22 on one BLAS build, +8.5e-23 on another).
+ZERO_MOMENT = 1e-10
 
 
-def _one(v: float) -> str:
-    return f"{float(v):.4g}"
+def _printer(t: Inertia) -> Callable[[float], str]:
+    zero = ZERO_MOMENT * max(abs(t.ixx), abs(t.ixy), abs(t.ixz), abs(t.iyy), abs(t.iyz), abs(t.izz))
+
+    def one(v: float) -> str:
+        return "0" if abs(v) <= zero else f"{float(v):.4g}"
+
+    return one
 
 
 def _not_positive_definite(eig: principal.Moments) -> bool:
@@ -157,7 +165,9 @@ def _not_positive_definite(eig: principal.Moments) -> bool:
 
 
 def _breaks_triangle(eig: principal.Moments) -> bool:
-    return eig[0] > 0 and eig[2] > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9)  # ascending
+    # only for a positive definite tensor: INER003 reports the others, and whether a moment
+    # that is zero in truth came out as +1e-22 or -1e-22 must not decide a second finding
+    return not _not_positive_definite(eig) and eig[2] > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9)  # ascending
 
 
 # The two tests above, decided over intervals: True or False when every value numpy may give
@@ -172,9 +182,12 @@ def _settled_not_pd(b: principal.Bounded) -> bool | None:
 
 
 def _settled_triangle(b: principal.Bounded) -> bool | None:
-    if b.high(0) <= 0 or b.high(2) <= 1e-12 or b.low(0) + b.low(1) >= b.high(2) * (1 - 1e-9):
+    if b.high(2) <= 1e-12 or b.low(0) + b.low(1) >= b.high(2) * (1 - 1e-9):
         return False
-    if b.low(0) > 0 and b.low(2) > 1e-12 and b.high(0) + b.high(1) < b.low(2) * (1 - 1e-9):
+    definite = _settled_not_pd(b)
+    if definite is not False:
+        return None if definite is None else False
+    if b.low(2) > 1e-12 and b.high(0) + b.high(1) < b.low(2) * (1 - 1e-9):
         return True
     return None
 
@@ -187,16 +200,17 @@ def _verdict(
     """The printed principal moments when ``test`` holds for numpy's eigenvalues of ``t``,
     else None. Plain-float eigenvalues (principal.bounded) answer when their interval
     settles the test and prints alike; numpy only when it does not (a tensor on the edge)."""
+    one = _printer(t)
     b = principal.bounded(t)
     decided = settled(b) if b is not None else None
     if decided is False:
         return None
     if decided and b is not None:
-        shown = principal.text(b, _one)
+        shown = principal.text(b, one)
         if shown is not None:
             return "[" + ", ".join(shown) + "]"
     eig = principal.moments(t)
-    return _fmt(eig) if test(eig) else None
+    return "[" + ", ".join(one(v) for v in eig) + "]" if test(eig) else None
 
 
 MASSLESS = 1e-6  # kg: a "mass" this small is a frame's placeholder, not a body
