@@ -264,6 +264,26 @@ def test_the_caches_are_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     assert (set(urdf_reader._PARSED), set(urdf_reader._NUMBERS), set(urdf_reader._POSES)) == kept
 
 
+def test_a_long_number_is_read_but_not_kept(monkeypatch: pytest.MonkeyPatch) -> None:
+    # a valid number can be a megabyte of digits: kept, 200,000 such texts would hold 200 GB
+    _fresh(monkeypatch)
+    long = "0." + "0" * 100_000 + "1"
+    xyz = f"{long} 0 0"
+    text = _urdf(
+        f'<link name="b"><inertial><mass value="{long}"/><origin xyz="{xyz}"/>'
+        f'<inertia ixx="{long}" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>'
+        '<joint name="k" type="fixed"><parent link="base"/><child link="b"/></joint>'
+    )
+    robot, findings = urdf_reader.read_urdf_text(text, "long.urdf")
+    assert findings == []
+    b = robot.link("b")
+    assert b is not None and b.inertial is not None and b.inertial.inertia is not None
+    assert (b.inertial.mass, b.inertial.inertia.ixx) == (float(long), float(long))
+    assert b.inertial.origin.xyz == (float(long), 0.0, 0.0)
+    kept = [*urdf_reader._PARSED, *urdf_reader._NUMBERS, *(t for pair in urdf_reader._POSES for t in pair if t)]
+    assert kept and max(len(t) for t in kept) <= urdf_reader._KEPT_TEXT  # the short ones are kept
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.booleans(), min_size=7, max_size=7), st.sampled_from(["", "<!-- <!d -->", "<?xml version='1.0'?>"]))
 def test_a_doctype_in_any_case_is_refused(upper: list[bool], before: str) -> None:

@@ -115,7 +115,7 @@ def _old_rule(t: Inertia, test: object) -> str | None:
     eig = tuple(_numpy(t))
     zero = 1e-10 * max(abs(v) for row in t.matrix() for v in row)
     shown = ["0" if abs(v) <= zero else f"{v:.4g}" for v in eig]
-    return "[" + ", ".join(shown) + "]" if test(eig) else None  # type: ignore[operator]
+    return "[" + ", ".join(shown) + "]" if test(eig, zero) else None  # type: ignore[operator]
 
 
 edge = st.sampled_from(
@@ -179,13 +179,29 @@ def test_a_moment_that_is_zero_in_truth_prints_as_0_and_decides_one_finding(plai
     assert got4 is None
 
 
+@pytest.mark.parametrize(
+    ("ixx", "iner003", "iner004"),
+    [
+        (1e-11, "[0, 0.5, 1]", None),  # printed as 0, so it is a zero moment: INER003's, not INER004's
+        (1e-10, "[0, 0.5, 1]", None),  # on the threshold (1e-10 of the largest entry, 1): zero
+        (1e-9, None, "[1e-09, 0.5, 1]"),  # a thin body, but a body: 1e-9 + 0.5 < 1 breaks the triangle
+    ],
+)
+def test_one_threshold_prints_a_moment_as_0_and_makes_it_iner003s(
+    ixx: float, iner003: str | None, iner004: str | None
+) -> None:
+    t = Inertia(ixx, 0.0, 0.0, 0.5, 0.0, 1.0)  # diagonal: its moments are its entries, by hand
+    assert rules._verdict(t, rules._not_positive_definite, rules._settled_not_pd) == iner003
+    assert rules._verdict(t, rules._breaks_triangle, rules._settled_triangle) == iner004
+
+
 def test_a_small_moment_that_is_not_zero_still_prints() -> None:
     # a thin rod: 1e-9 of the largest entry is a moment, printed; 1e-11 of it is rounding
     with numpy_not_loaded():
         rod = Inertia(1e-9, 0.0, 0.0, 1.0, 0.0, 1.0)
-        assert rules._verdict(rod, lambda e: True, lambda b: True) == "[1e-09, 1, 1]"
+        assert rules._verdict(rod, lambda e, z: True, lambda b, z: True) == "[1e-09, 1, 1]"
         flat = Inertia(1e-11, 0.0, 0.0, 1.0, 0.0, 1.0)
-        assert rules._verdict(flat, lambda e: True, lambda b: True) == "[0, 1, 1]"
+        assert rules._verdict(flat, lambda e, z: True, lambda b, z: True) == "[0, 1, 1]"
 
 
 def test_a_finding_is_printed_from_plain_floats_only_when_they_print_alike(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -197,7 +213,7 @@ def test_a_finding_is_printed_from_plain_floats_only_when_they_print_alike(monke
     monkeypatch.setattr(principal, "bounded", lambda t: b)
     monkeypatch.setattr(principal, "moments", lambda t: asked.append(t) or (1.0, 2.0, 2.0005))
     t = Inertia(1.0, 0.0, 0.0, 2.0, 0.0, 2.0)
-    assert rules._verdict(t, lambda e: True, lambda b: True) == "[1, 2, 2.001]"  # numpy's, not ours
+    assert rules._verdict(t, lambda e, z: True, lambda b, z: True) == "[1, 2, 2.001]"  # numpy's, not ours
     assert asked == [t]
 
 
@@ -281,8 +297,13 @@ near = st.sampled_from([0.0, 1e-15, 1e-12, 1.0, 2.0, 2.0 / (1 - 1e-9), 3.0, -1e-
 
 
 @settings(max_examples=1500, deadline=None)
-@given(st.tuples(near, near, near).map(sorted), st.sampled_from([0.0, 1e-17, 1e-15, 1e-9, 1e-6, 0.5]), st.data())
-def test_a_settled_verdict_holds_for_every_value_in_the_intervals(values, err, data) -> None:  # type: ignore[no-untyped-def]
+@given(
+    st.tuples(near, near, near).map(sorted),
+    st.sampled_from([0.0, 1e-17, 1e-15, 1e-9, 1e-6, 0.5]),
+    st.sampled_from([0.0, 1e-15, 1e-12, 1e-10, 3e-10]),  # the tensor's zero: 1e-10 of its largest entry
+    st.data(),
+)
+def test_a_settled_verdict_holds_for_every_value_in_the_intervals(values, err, zero, data) -> None:  # type: ignore[no-untyped-def]
     b = principal.Bounded(tuple(values), err)  # type: ignore[arg-type]
     corners = [
         tuple(v + s * err for v, s in zip(values, signs, strict=True)) for signs in itertools.product((-1, 1), repeat=3)
@@ -293,6 +314,6 @@ def test_a_settled_verdict_holds_for_every_value_in_the_intervals(values, err, d
         (rules._not_positive_definite, rules._settled_not_pd),
         (rules._breaks_triangle, rules._settled_triangle),
     ):
-        verdict = settled(b)
+        verdict = settled(b, zero)
         if verdict is not None:
-            assert all(test(p) == verdict for p in points), (test.__name__, b)
+            assert all(test(p, zero) == verdict for p in points), (test.__name__, b)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,7 +21,7 @@ from descgen.spec import load_spec
 from descgen.sweep import DEFAULT_STEPS, disabled_pairs, grid, state_values, sweepable
 from descgen.sweep.motion import MOVES, analyse, joint_values, quarter_turn
 from tests.corpus import descriptions
-from tests.helpers import ROOT
+from tests.helpers import ROOT, cli
 
 CORPUS = descriptions()
 
@@ -54,7 +55,9 @@ def _numpy_motion(
     if j.axis is not None and j.parent is not None and j.type in ("revolute", "continuous", "prismatic"):
         here = kinematics.forward(robot, joint_values(robot, state, name, q0))
         if j.parent in here:
-            a = (here[j.parent] @ kinematics.joint_transform(j))[:3, :3] @ np.asarray(j.axis, dtype=float)
+            # the rotation blocks alone: a 4x4 product would mix an inf translation into them (inf * 0)
+            turn = here[j.parent][:3, :3] @ kinematics.joint_transform(j)[:3, :3]
+            a = turn @ np.asarray(j.axis, dtype=float)
             axis = tuple(a / np.linalg.norm(a)) if np.linalg.norm(a) > 0 else None
     names = [n for n in geometry if n in first]
     inv0 = {n: np.linalg.inv(first[n]) for n in names}
@@ -101,3 +104,27 @@ def test_the_example_sweeps_as_with_numpy() -> None:
     robot = load_spec(ROOT / "specs" / "warehouse_arm.yaml").robot
     assert disabled_pairs(robot)[0]  # the example has an SRDF matrix: its pairs are filtered
     assert _same_as_numpy(robot) >= 4  # lift, shoulder pan and lift, elbow
+
+
+def test_a_pose_past_the_float_range_moves_nothing_as_with_numpy(tmp_path: Path) -> None:
+    # two 1e308 offsets put the arm at x = inf: its pose entries inf - inf = nan compare as no
+    # motion (numpy's max is nan), and the sweep command says so instead of failing on round(nan)
+    far = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+    urdf = tmp_path / "overflow.urdf"
+    urdf.write_text(
+        f'<robot name="r"><link name="base">{far}</link>'
+        '<joint name="off1" type="fixed"><parent link="base"/><child link="far1"/><origin xyz="1e308 0 0"/></joint>'
+        f'<link name="far1">{far}</link>'
+        '<joint name="off2" type="fixed"><parent link="far1"/><child link="far2"/><origin xyz="1e308 0 0"/></joint>'
+        f'<link name="far2">{far}</link>'
+        '<joint name="turn" type="revolute"><parent link="far2"/><child link="arm"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        f'<link name="arm">{far}</link>'
+        '<joint name="tip" type="fixed"><parent link="arm"/><child link="tool"/><origin xyz="0.5 0 0"/></joint>'
+        f'<link name="tool">{far}</link></robot>'
+    )
+    robot, _ = read_urdf(urdf)
+    assert _same_as_numpy(robot, steps=4) == 1
+    done = cli("sweep", str(urdf))
+    assert done.returncode == 0, done.stderr
+    assert "positive turn moves no link" in done.stdout

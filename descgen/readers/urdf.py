@@ -106,7 +106,10 @@ def _one_line(message: str) -> str:
 _PARSED: dict[str, tuple[float, ...]] = {}
 _NUMBERS: dict[str, float] = {}
 _POSES: dict[tuple[str | None, str | None], m.Pose] = {}
-_KEPT = 200_000  # entries: a few MB; a file of random numbers must not grow them without end
+_KEPT = 200_000  # entries: a file of random numbers must not grow them without end
+# nor a few long ones: only a text this short is kept ("-1.5707963267949 0 3.14159265358979" is
+# 36; a valid number may be a megabyte of digits), so the caches hold at most _KEPT short texts
+_KEPT_TEXT = 96
 
 
 class _Reader:
@@ -158,7 +161,8 @@ class _Reader:
         if not math.isfinite(sum(values)) and not all(map(math.isfinite, values)):
             self.not_finite(e, f"{e.tag} {attr}='{raw}'", subject)
             return default
-        self.parsed[raw] = values
+        if len(raw) <= _KEPT_TEXT:
+            self.parsed[raw] = values
         return values
 
     def not_finite(self, e: etree._Element, what: str, subject: str) -> None:
@@ -185,7 +189,8 @@ class _Reader:
         v = self.floats(e, attr, 1, None, subject)
         if v is None:
             return None
-        self.numbers[raw] = v[0]  # only a valid value: a bad one is reported at each place
+        if len(raw) <= _KEPT_TEXT:
+            self.numbers[raw] = v[0]  # only a valid value: a bad one is reported at each place
         return v[0]
 
     def pose(self, e: etree._Element | None, subject: str) -> m.Pose:
@@ -199,7 +204,8 @@ class _Reader:
         xyz = self.floats(e, "xyz", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
         rpy = self.floats(e, "rpy", 3, (0.0, 0.0, 0.0), subject) or (0.0, 0.0, 0.0)
         pose = m.Pose((xyz[0], xyz[1], xyz[2]), (rpy[0], rpy[1], rpy[2]))
-        if len(self.findings) == before:  # a bad origin is reported wherever it is written
+        # a bad origin is reported wherever it is written
+        if len(self.findings) == before and len(texts[0] or "") + len(texts[1] or "") <= _KEPT_TEXT:
             self.poses[texts] = pose
         return pose
 

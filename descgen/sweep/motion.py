@@ -170,8 +170,12 @@ def _entries(f: Frame) -> tuple[float, ...]:
 
 
 def _gap(a: tuple[float, ...], b: tuple[float, ...]) -> float:
-    """The largest ``|a_i - b_i|`` (as ``np.max(np.abs(a - b))``; map and max keep the loop in C)."""
-    return float(max(map(abs, map(operator.sub, a, b))))
+    """The largest ``|a_i - b_i|``, nan when any is nan, as ``np.max(np.abs(a - b))`` gives it
+    (a pose past the float range, 1e308 + 1e308, has inf - inf = nan entries: no motion is
+    read from them). map, sum and max keep the loop in C; the sum of non-negative terms is
+    nan exactly when one of them is."""
+    diffs = tuple(map(abs, map(operator.sub, a, b)))
+    return math.nan if math.isnan(sum(diffs)) else float(max(diffs))
 
 
 def _apart(a: Frame, b: Frame) -> bool:

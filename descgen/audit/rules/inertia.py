@@ -101,7 +101,8 @@ def moving_link_without_mass(robot: Robot) -> Iterator[Finding]:
 @rule("INER003", "inertia-not-positive-definite", "error")
 def inertia_not_positive_definite(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Checks that each inertia tensor has positive principal moments.
+    Checks that each inertia tensor has positive principal moments. A moment within 1e-10 of
+    the tensor's largest entry counts as zero (and is printed as 0).
     ## Why is this bad?
     A tensor with a zero or negative eigenvalue is not a rigid body; urdfdom accepts it.
     """
@@ -146,45 +147,50 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
 
 
 # A principal moment within this fraction of the tensor's largest entry is zero at any
-# precision a CAD export or a hand computation has: it is printed as 0, not as the rounding
-# noise LAPACK leaves there (-1.993e-22 on one BLAS build, +8.5e-23 on another).
+# precision a CAD export or a hand computation has (a body that thin is a line: a 1 m rod of
+# 1 um radius): such a tensor is not positive definite (INER003), and the moment is printed as
+# 0, not as the rounding noise LAPACK leaves there (-1.993e-22 on one BLAS build, +8.5e-23 on
+# another). One threshold for both, so a printed 0 is always INER003's.
 ZERO_MOMENT = 1e-10
 
 
-def _printer(t: Inertia) -> Callable[[float], str]:
-    zero = ZERO_MOMENT * max(abs(t.ixx), abs(t.ixy), abs(t.ixz), abs(t.iyy), abs(t.iyz), abs(t.izz))
+def _zero(t: Inertia) -> float:
+    return ZERO_MOMENT * max(abs(t.ixx), abs(t.ixy), abs(t.ixz), abs(t.iyy), abs(t.iyz), abs(t.izz))
 
+
+def _printer(zero: float) -> Callable[[float], str]:
     def one(v: float) -> str:
         return "0" if abs(v) <= zero else f"{float(v):.4g}"
 
     return one
 
 
-def _not_positive_definite(eig: principal.Moments) -> bool:
-    return min(eig) <= 1e-15 * max(1.0, max(abs(v) for v in eig))
+def _not_positive_definite(eig: principal.Moments, zero: float) -> bool:
+    return min(eig) <= zero
 
 
-def _breaks_triangle(eig: principal.Moments) -> bool:
+def _breaks_triangle(eig: principal.Moments, zero: float) -> bool:
     # only for a positive definite tensor: INER003 reports the others, and whether a moment
     # that is zero in truth came out as +1e-22 or -1e-22 must not decide a second finding
-    return not _not_positive_definite(eig) and eig[2] > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9)  # ascending
+    return not _not_positive_definite(eig, zero) and eig[2] > 1e-12 and eig[0] + eig[1] < eig[2] * (1 - 1e-9)
 
 
 # The two tests above, decided over intervals: True or False when every value numpy may give
 # decides alike, None when not. Sound because each float comparison, sum, product and max
-# is monotone in its arguments, so the ends of the intervals bound every case.
-def _settled_not_pd(b: principal.Bounded) -> bool | None:
-    if b.low(0) > 1e-15 * max(1.0, abs(b.low(0)), abs(b.high(0)), abs(b.low(2)), abs(b.high(2))):
+# is monotone in its arguments, so the ends of the intervals bound every case (eigenvalues
+# ascending; ``zero`` is the tensor's own, exact).
+def _settled_not_pd(b: principal.Bounded, zero: float) -> bool | None:
+    if b.low(0) > zero:
         return False
-    if b.high(0) <= 1e-15 * max(1.0, b.low(2)):  # max |e| >= e2 >= its low end
+    if b.high(0) <= zero:
         return True
     return None
 
 
-def _settled_triangle(b: principal.Bounded) -> bool | None:
+def _settled_triangle(b: principal.Bounded, zero: float) -> bool | None:
     if b.high(2) <= 1e-12 or b.low(0) + b.low(1) >= b.high(2) * (1 - 1e-9):
         return False
-    definite = _settled_not_pd(b)
+    definite = _settled_not_pd(b, zero)
     if definite is not False:
         return None if definite is None else False
     if b.low(2) > 1e-12 and b.high(0) + b.high(1) < b.low(2) * (1 - 1e-9):
@@ -194,15 +200,16 @@ def _settled_triangle(b: principal.Bounded) -> bool | None:
 
 def _verdict(
     t: Inertia,
-    test: Callable[[principal.Moments], bool],
-    settled: Callable[[principal.Bounded], bool | None],
+    test: Callable[[principal.Moments, float], bool],
+    settled: Callable[[principal.Bounded, float], bool | None],
 ) -> str | None:
     """The printed principal moments when ``test`` holds for numpy's eigenvalues of ``t``,
     else None. Plain-float eigenvalues (principal.bounded) answer when their interval
     settles the test and prints alike; numpy only when it does not (a tensor on the edge)."""
-    one = _printer(t)
+    zero = _zero(t)
+    one = _printer(zero)
     b = principal.bounded(t)
-    decided = settled(b) if b is not None else None
+    decided = settled(b, zero) if b is not None else None
     if decided is False:
         return None
     if decided and b is not None:
@@ -210,7 +217,7 @@ def _verdict(
         if shown is not None:
             return "[" + ", ".join(shown) + "]"
     eig = principal.moments(t)
-    return "[" + ", ".join(one(v) for v in eig) + "]" if test(eig) else None
+    return "[" + ", ".join(one(v) for v in eig) + "]" if test(eig, zero) else None
 
 
 MASSLESS = 1e-6  # kg: a "mass" this small is a frame's placeholder, not a body
