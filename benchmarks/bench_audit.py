@@ -21,6 +21,8 @@ URDFs with their SRDFs; its meshes, ~620 distinct files, 350 MB, are resolved an
 - in process: the loop again in the first process, facts already in memory (reading,
   resolving and every rule; no hashing; the findings cache emptied before each pass).
 - warm: the synthetic 1000-link chain read and audited in process, against check_urdf on its URDF.
+- `descgen audit --jobs 1` and `--jobs 2`: the console script over the 69 URDFs alone (no SRDFs,
+  as check_urdf), findings cache empty, mesh cache warm; wall time is what --jobs buys.
 The anchor is always check_urdf as cold processes. The cache folder is a temporary one, so
 the user's own cache is neither used nor changed. Each whole-process row is printed twice:
 wall time, and CPU time (user + system of the process and its children, from getrusage, as
@@ -152,6 +154,31 @@ def _corpus_rows(check: Anchor) -> None:
     row(f"{again}, CPU", statistics.median(cold["cpus"][1:]), c_check, "warm")
 
 
+def _cli_rows(urdfs: list[Path], check: Anchor) -> None:
+    """`descgen audit URDF...` as a user runs it, the URDFs alone (no SRDFs, as check_urdf
+    reads them), findings cache emptied before each run and the mesh cache warm: one process,
+    then `--jobs 2` (this machine's cores). Wall time is what --jobs buys; CPU shows its cost."""
+    t_check, c_check = check if check else (None, None)
+    tool = str(Path(sys.executable).parent / "descgen")
+    from tests.corpus import share
+
+    where = ["--package-path", str(share())] if share() else []
+    with tempfile.TemporaryDirectory() as cache:
+        env = {**os.environ, "DESCGEN_CACHE_DIR": cache}
+        subprocess.run([tool, "audit", *where, *map(str, urdfs)], capture_output=True, env=env)  # mesh facts
+        for jobs in ("1", "2"):
+            runs = []
+            for _ in range(3):
+                shutil.rmtree(Path(cache) / "results" / "audit", ignore_errors=True)
+                c0, t0 = _children_cpu(), time.perf_counter()
+                subprocess.run([tool, "audit", "--jobs", jobs, *where, *map(str, urdfs)], capture_output=True, env=env)
+                runs.append((time.perf_counter() - t0, _children_cpu() - c0))
+            what = f"`descgen audit --jobs {jobs}` of the {len(urdfs)} corpus URDFs alone, findings cache empty"
+            what += " (median of 3)"
+            row(what, statistics.median(r[0] for r in runs), t_check, "cold")
+            row(f"{what}, CPU", statistics.median(r[1] for r in runs), c_check, "cold")
+
+
 def main() -> None:
     from descgen.audit import run
     from descgen.readers.urdf import read_urdf_text
@@ -176,6 +203,7 @@ def main() -> None:
     header()
     if corpus:
         _corpus_rows(check)
+        _cli_rows([u for _, u, _ in corpus], check)
     else:
         print("example-robot-data is not installed: no corpus rows")
 

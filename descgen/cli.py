@@ -61,11 +61,12 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _cmd_generate(args: argparse.Namespace) -> int:
     _settled_import("descgen.generate")
     from .generate import generate
+    from .progress import wanted
     from .spec.files import expand_specs
 
     worst = EXIT_OK
     for spec in expand_specs(args.spec):
-        outcome = generate(Path(spec), args.out, args.templates, args.force, tuple(args.package_path or ()))
+        outcome = generate(Path(spec), args.out, args.templates, args.force, tuple(args.package_path or ()), wanted())
         sys.stderr.write(report.text(outcome.findings))
         if outcome.failed:
             print(f"{spec}: nothing written: a check failed", file=sys.stderr)
@@ -183,17 +184,14 @@ def _description_options(args: argparse.Namespace) -> Options:
 
 
 def _cmd_audit(args: argparse.Namespace) -> int:
-    from .audit.inputs import audit
+    from .audit.inputs import audit_paths
+    from .progress import counting, wanted
 
     options = dataclasses.replace(_description_options(args), moveit_config=args.moveit_config)
-    found: list[Finding] = []
-    unusable = False
-    for path in args.path:
-        try:
-            found += audit(Path(path), options)
-        except InputError as exc:
-            found += exc.findings
-            unusable = True
+    paths = [Path(p) for p in args.path]
+    show = wanted(args.format == "text") and len(paths) > 1
+    with counting(len(paths), "audit", "file", show) as step:
+        found, unusable = audit_paths(paths, options, args.jobs, step)
     if args.format == "json":
         sys.stdout.write(report.as_json(found))
     elif args.format == "sarif":
@@ -272,11 +270,13 @@ def _cmd_frames(args: argparse.Namespace) -> int:
 
 
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
+    from .progress import wanted
     from .tf.bagaudit import audit_all
 
     bags = [Path(b) for b in args.bag]
     topics = tuple(args.topic or ())
-    reps = audit_all(bags, args.target, args.jobs, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
+    show = wanted(args.format == "text")
+    reps = audit_all(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
     if args.format == "json":
         sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, reps), indent=2) + "\n")
     else:
@@ -329,9 +329,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from .progress import wanted
     from .sweep import Settings, as_dict, sweep_description, text
 
-    tty = sys.stderr.isatty()  # progress on a terminal only, never into a log or a pipe
+    tty = wanted(args.format == "text")  # progress on a terminal only: not in a log, a pipe, CI or JSON
 
     def progress(line: str) -> None:
         sys.stderr.write(f"\r\x1b[K{line}")
@@ -512,6 +513,9 @@ def parser() -> argparse.ArgumentParser:
     )
     a.add_argument("--format", choices=("text", "json", "sarif"), default="text")
     a.add_argument("--strict", action="store_true", help="warnings count as errors")
+    a.add_argument(
+        "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"
+    )
     a.set_defaults(fn=_cmd_audit)
 
     im = sub.add_parser("import", help="a URDF or Xacro (+ SRDF) -> a spec with sources, proven by a round trip")

@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any
 from . import mimic
 from .findings import Finding, InputError, Where
 from .model import CollisionMatrix, DisabledPair, MatrixSettings, Robot
+from .progress import Step, counting
 
 if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses the committed
     import numpy as np  # matrix and must not pay numpy's import (~60 ms) for it
@@ -131,16 +132,18 @@ def compute(
     package: str,
     settings: MatrixSettings,
     committed_srdf: str | None = None,
+    show_progress: bool = False,
 ) -> CollisionMatrix:
     """The matrix for ``robot`` (its expanded ``urdf``; ``meshes``: package path -> bytes of
-    the package's own meshes), or the committed one when nothing it depends on changed."""
+    the package's own meshes), or the committed one when nothing it depends on changed.
+    ``show_progress``: the samples drawn on a terminal (descgen/progress.py)."""
     key = input_hash(robot, urdf, {k: hashlib.sha256(v).hexdigest() for k, v in meshes.items()}, settings)
     with_geometry, without = geometry_links(robot)
     checked = len(with_geometry) * (len(with_geometry) - 1) // 2
     state_name = _state_values(robot, settings)[0]
     pairs = cached(robot, committed_srdf, key) or _SAMPLED.get(key)
     if pairs is None:
-        pairs = _SAMPLED[key] = _sample(robot, urdf, meshes, package, settings)
+        pairs = _SAMPLED[key] = _sample(robot, urdf, meshes, package, settings, show_progress)
     return CollisionMatrix(settings, key, pairs, tuple(without), checked, state_name)
 
 
@@ -287,7 +290,12 @@ def colliding(scene: _Scene, q: np.ndarray, pairs: list[frozenset[str]], switch:
 
 
 def _sample(
-    robot: Robot, urdf: str, meshes: Mapping[str, bytes], package: str, settings: MatrixSettings
+    robot: Robot,
+    urdf: str,
+    meshes: Mapping[str, bytes],
+    package: str,
+    settings: MatrixSettings,
+    show_progress: bool = False,
 ) -> tuple[DisabledPair, ...]:
     scene = load_scene(robot, urdf, meshes, package, settings.padding)
     with_geometry = geometry_links(robot)[0]
@@ -297,7 +305,8 @@ def _sample(
     rest = [p for p in every if p not in reasons]
     default = colliding(scene, configuration(scene, _state_values(robot, settings)[1]), rest)
     reasons.update({p: "Default" for p in default})
-    counts = _counts(scene, [p for p in rest if p not in default], settings)
+    with counting(settings.samples, "collision matrix", "sample", show_progress) as step:
+        counts = _counts(scene, [p for p in rest if p not in default], settings, step)
     for p, hits in counts.items():
         if hits == 0:
             reasons[p] = "Never"
@@ -311,9 +320,12 @@ def _sample(
     return tuple(sorted(out, key=lambda d: (COMPUTED_REASONS.index(d.reason), order[d.link1], order[d.link2])))
 
 
-def _counts(scene: _Scene, pairs: list[frozenset[str]], settings: MatrixSettings) -> dict[frozenset[str], int]:
+def _counts(
+    scene: _Scene, pairs: list[frozenset[str]], settings: MatrixSettings, step: Step | None = None
+) -> dict[frozenset[str], int]:
     """Samples in collision per pair; -1 for a pair dropped once it can be neither Never nor
-    Always (seen in collision, and free in more than 1 - fraction of all samples)."""
+    Always (seen in collision, and free in more than 1 - fraction of all samples). ``step``
+    is told the samples drawn, every 100."""
     hits = dict.fromkeys(pairs, 0)
     free_budget = (1.0 - settings.fraction) * settings.samples
     live = list(pairs)
@@ -330,4 +342,6 @@ def _counts(scene: _Scene, pairs: list[frozenset[str]], settings: MatrixSettings
         if dropped:
             live = [p for p in live if hits[p] >= 0]
             activate(scene, live)
+        if step is not None and seen % 100 == 0:
+            step(100)
     return hits

@@ -101,12 +101,14 @@ def plan(
     templates: Path | None = None,
     package_paths: Sequence[Path] = (),
     thorough: bool = False,
+    show_progress: bool = False,
 ) -> Plan:
     """Load, render and prove one spec. Raises InputError for invalid input.
 
     ``templates`` (--templates) overrides the folder the spec records (``templates:``); that
     one renders sandboxed, since the spec is someone else's data. ``package_paths``
-    (--package-path) are searched for ``package://`` meshes after the spec's ``package_paths:``."""
+    (--package-path) are searched for ``package://`` meshes after the spec's ``package_paths:``.
+    ``show_progress``: a collision matrix's samples drawn on a terminal."""
     root = out_root or default_out(spec)
     loaded = load_spec(spec, package_paths=package_paths)
     robot = loaded.robot
@@ -121,7 +123,11 @@ def plan(
         # the SRDF and its evidence need the matrix
         urdf = f"urdf/{robot.name}.urdf"
         robot = _with_matrix(
-            robot, render_package(robot, shown, templates, sandboxed, only={urdf}), meshes, root / package_name(robot)
+            robot,
+            render_package(robot, shown, templates, sandboxed, only={urdf}),
+            meshes,
+            root / package_name(robot),
+            show_progress,
         )
     files = render_package(robot, shown, templates, sandboxed)
     if meshes:
@@ -141,7 +147,9 @@ def plan(
     return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes, moveit_files, moveit_dir, proofs)
 
 
-def _with_matrix(robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple[Path, bytes]], pkg: Path) -> Robot:
+def _with_matrix(
+    robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple[Path, bytes]], pkg: Path, show_progress: bool
+) -> Robot:
     """The robot with its sampled self-collision matrix, taken from the committed SRDF when
     that records the same input hash (so ``check`` does not sample again)."""
     from dataclasses import replace
@@ -164,6 +172,7 @@ def _with_matrix(robot: Robot, files: Mapping[str, str], meshes: dict[str, tuple
         pkg.name,
         sem.collision_matrix,
         committed,
+        show_progress,
     )
     from .sweep import evidence as sweep_evidence
 
@@ -595,8 +604,9 @@ def generate(
     templates: Path | None = None,
     force: bool = False,
     package_paths: Sequence[Path] = (),
+    show_progress: bool = False,
 ) -> Outcome:
-    p = plan(spec, _output_root(spec, out_root), templates, package_paths)
+    p = plan(spec, _output_root(spec, out_root), templates, package_paths, show_progress=show_progress)
     outcome = Outcome(findings=list(p.findings))
     if outcome.failed:
         return outcome

@@ -3,10 +3,16 @@
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import io
+import os
+import pty
+import select
 import signal
+import struct
 import subprocess
 import sys
+import termios
 import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -132,3 +138,29 @@ def pint_si(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> float | st
             return units._to_si(text, kind)
         except units.QuantityError as exc:
             return exc.code
+
+
+def on_a_terminal(args: list[str], env: dict[str, str], cwd: Path = ROOT) -> str:
+    """stderr of ``descgen ARGS`` when stderr is a terminal (a pseudo-terminal), stdout a pipe."""
+    leader, follower = pty.openpty()
+    # a terminal of 24 x 80, as a user's (a new pty is 0 x 0, where tqdm draws nothing)
+    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 80, 0, 0))
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "descgen", *args], stdout=subprocess.PIPE, stderr=follower, cwd=cwd, env=env
+    )
+    os.close(follower)
+    chunks = []
+    while True:
+        ready, _, _ = select.select([leader], [], [], 60)
+        if not ready:
+            break
+        try:
+            data = os.read(leader, 65536)
+        except OSError:  # the terminal closed with the process
+            break
+        if not data:
+            break
+        chunks.append(data)
+    proc.communicate(timeout=60)
+    os.close(leader)
+    return b"".join(chunks).decode("utf-8", "replace")

@@ -190,3 +190,39 @@ def test_without_pinocchio_the_matrix_is_refused_gen070(monkeypatch: pytest.Monk
 
 def test_example_text_asks_for_the_matrix() -> None:
     assert "collision_matrix:" in EXAMPLE_TEXT
+
+
+def test_the_samples_drawn_are_told_to_the_progress_bar() -> None:
+    # every 100 samples drawn, until the pairs left can be neither Never nor Always (then the
+    # loop stops early); the example's settings draw its samples to the end or stop early, and
+    # either way the steps add up to the samples drawn, in hundreds
+    robot, urdf = _example()
+    settings = replace(robot.semantic.collision_matrix, samples=1000)  # type: ignore[attr-defined]
+    scene = collision.load_scene(robot, urdf, {}, PKG.name, settings.padding)  # type: ignore[arg-type]
+    names = collision.geometry_links(robot)[0]  # type: ignore[arg-type]
+    pairs = [frozenset((a, b)) for i, a in enumerate(names) for b in names[i + 1 :]]
+    told: list[int] = []
+    counts = collision._counts(scene, pairs, settings, told.append)
+    assert told and set(told) == {100} and sum(told) <= 1000
+    # a pair still live at the end was looked at in every sample, so the loop ran to the end
+    if any(n >= 0 for n in counts.values()):
+        assert sum(told) == 1000
+
+
+def test_generate_draws_the_sampling_on_a_terminal(tmp_path: Path) -> None:
+    import os
+    import shutil
+
+    from tests.helpers import on_a_terminal
+
+    project = tmp_path / "project"
+    for rel in ("specs/warehouse_arm.yaml", "specs/trajectories/ready.yaml"):
+        (project / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / rel, project / rel)
+    spec = project / "specs" / "warehouse_arm.yaml"
+    text = spec.read_text()
+    assert "seed: 1, samples: 10000" in text
+    spec.write_text(text.replace("seed: 1, samples: 10000", "seed: 7, samples: 2000"))  # sampled anew
+    env = {k: v for k, v in os.environ.items() if k != "CI"} | {"DESCGEN_CACHE_DIR": ""}
+    shown = on_a_terminal(["generate", str(spec), "--out", str(project / "generated")], env, cwd=project)
+    assert "collision matrix" in shown and "sample/s" in shown, shown[:400]

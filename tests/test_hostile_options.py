@@ -503,6 +503,7 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("audit", "--trust-xacro", ["audit", NOSPEC, "--trust-xacro=no"], "argument --trust-xacro: ignored explicit"),
     ("audit", "--format", ["audit", NOSPEC, "--format", "html"], "argument --format: invalid choice: 'html'"),
     ("audit", "--strict", ["audit", NOSPEC, "--strict=0"], "argument --strict: ignored explicit argument '0'"),
+    ("audit", "--jobs", ["audit", NOSPEC, "--jobs", "100000"], "argument --jobs: 100000 processes is outside 1 to 64"),
     ("import", "path", ["import", "{tmp}/none.urdf"], "error[READ001]"),
     ("import", "--srdf", ["import", NOSPEC, "--srdf", ""], "argument --srdf: an empty path names nothing"),
     ("import", "--controllers", ["import", NOSPEC, "--controllers", " "], "argument --controllers: an empty path"),

@@ -161,3 +161,23 @@ def test_several_recordings_with_jobs(tmp_path: Path) -> None:
 def test_jobs_is_a_whole_number_of_processes(value: str, message: str) -> None:
     r = cli("tf-audit", "bag", "--target", "odom", "--jobs", value)
     assert r.returncode == 2 and f"argument --jobs: {message}" in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize(("jobs", "unit"), [("1", "msg/s"), ("2", "recording/s")])
+def test_progress_on_a_terminal_and_not_in_a_pipe(tmp_path: Path, jobs: str, unit: str) -> None:
+    import os
+    import subprocess
+    import sys
+
+    from .helpers import on_a_terminal
+
+    a, b = tmp_path / "a", tmp_path / "b"
+    scenario.write(ROBOT, a, (), duration=2.0)
+    scenario.write(ROBOT, b, (), duration=2.0)
+    env = {k: v for k, v in os.environ.items() if k != "CI"}
+    args = ["tf-audit", str(a), str(b), "--target", "odom", "--jobs", jobs]
+    shown = on_a_terminal(args, env)
+    assert unit in shown, shown[:400]  # tqdm's bar: messages read, or recordings done with --jobs
+    piped = subprocess.run([sys.executable, "-m", "descgen", *args], capture_output=True, text=True, env=env)
+    assert piped.returncode == 0 and unit not in piped.stderr and "\r" not in piped.stderr
+    assert on_a_terminal([*args, "--format", "json"], env).count(unit) == 0

@@ -10,11 +10,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import mesh_paths
-from ..findings import Finding, Where
+from ..findings import Finding, InputError, Where
 from ..model import MeshState, Robot, Ros2Control
 from ..safeio import check_file, read_bounded, read_head
 
 if TYPE_CHECKING:
+    from ..progress import Step
     from . import findings_cache
 
 # The readers (lxml) and the rules are imported where they are used: an audit answered from the
@@ -145,6 +146,47 @@ def audit(path: Path, options: Options = Options()) -> list[Finding]:
     if kept is not None:
         findings_cache.put(kept, robot, found)
     return found
+
+
+def audit_paths(
+    paths: Sequence[Path], options: Options = Options(), jobs: int = 1, step: Step | None = None
+) -> tuple[list[Finding], bool]:
+    """Every finding of every description in ``paths``, in their order, and whether any was
+    unusable (its input errors are among the findings, so one unreadable file does not hide
+    the others'). ``jobs`` > 1 audits that many at once in separate processes (an audit is
+    CPU-bound Python; a pool's process ends without atexit, and keeps the mesh facts it measured
+    because descgen/meshes.py saves the index as it measures); ``step(1)`` is called as each
+    one is done."""
+    done = step or (lambda n: None)
+    if jobs <= 1 or len(paths) <= 1:
+        outcomes = []
+        for path in paths:
+            outcomes.append(_audit_one(path, options))
+            done(1)
+    else:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        from ..readers import urdf  # noqa: F401  (imported once here: forked workers start with it)
+        from .registry import load
+
+        load()
+
+        with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
+            futures = [pool.submit(_audit_one, path, options) for path in paths]
+            for _ in as_completed(futures):
+                done(1)
+            outcomes = [f.result() for f in futures]
+    found = [f for fs, _ in outcomes for f in fs]
+    return found, any(unusable for _, unusable in outcomes)
+
+
+def _audit_one(path: Path, options: Options) -> tuple[list[Finding], bool]:
+    """One description's findings and whether it was unusable (its input errors returned, not
+    raised: they cross a process boundary as data)."""
+    try:
+        return audit(path, options), False
+    except InputError as exc:
+        return list(exc.findings), True
 
 
 def _cache_inputs(path: Path, options: Options) -> findings_cache.Inputs | None:

@@ -100,6 +100,11 @@ def run(robot: Robot, codes: Iterable[str] | None = None, stage: Stage | None = 
     return out
 
 
+def load() -> None:
+    """Register every rule module now (a process that forks workers imports them once, here)."""
+    from . import rules  # noqa: F401
+
+
 def iter_rules() -> Iterator[RuleInfo]:
     from . import rules  # noqa: F401
 

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ..findings import Finding, InputError, Where
+from ..progress import counting
 from .buffer import BufferCore, TransformError
 
 TF_TOPICS = ("/tf", "/tf_static")
@@ -223,10 +224,12 @@ def audit(
     cache_ns: int = 10_000_000_000,
     examples: int = 5,
     keep_results: bool = False,
+    show_progress: bool = False,
 ) -> Report:
     """Replay the recording once, in log-time order (the order rosbags yields: MCAP chunks
     merged by time, sqlite3 ORDER BY timestamp). ``keep_results`` keeps every lookup's
-    outcome in ``Report.results``, which grows with the recording (tests use it)."""
+    outcome in ``Report.results``, which grows with the recording (tests use it);
+    ``show_progress`` draws the messages read on a terminal (descgen/progress.py)."""
     from rosbags.typesys import Stores, get_typestore
 
     ts = get_typestore(Stores.ROS2_JAZZY)
@@ -267,15 +270,24 @@ def audit(
                 )
         tf_conns = [c for c in connections if c.topic in TF_TOPICS]
         header_first = {c.msgtype: _header_first(ts, c.msgtype) for c in chosen}
-        for conn, log_ns, raw in reader.messages(connections=tf_conns + chosen):
-            topic = conn.topic
-            if topic in TF_TOPICS:
-                replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
-            elif header_first[conn.msgtype]:
-                replay.sensor(topic, log_ns, *_raw_header(raw))
-            else:
-                header = getattr(ts.deserialize_cdr(raw, conn.msgtype), "header")  # noqa: B009
-                replay.sensor(topic, log_ns, _stamp(header), header.frame_id)
+        read = tf_conns + chosen
+        total = sum(int(getattr(c, "msgcount", 0) or 0) for c in read) or None
+        with counting(total, path.name, "msg", show_progress) as step:
+            since = 0
+            for conn, log_ns, raw in reader.messages(connections=read):
+                topic = conn.topic
+                if topic in TF_TOPICS:
+                    replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
+                elif header_first[conn.msgtype]:
+                    replay.sensor(topic, log_ns, *_raw_header(raw))
+                else:
+                    header = getattr(ts.deserialize_cdr(raw, conn.msgtype), "header")  # noqa: B009
+                    replay.sensor(topic, log_ns, _stamp(header), header.frame_id)
+                since += 1
+                if since == _PROGRESS_EVERY:
+                    step(since)
+                    since = 0
+            step(since)
         replay.flush(None)
     except InputError:
         raise
@@ -343,6 +355,7 @@ def _lookup(
 
 
 MAX_JOBS = 64
+_PROGRESS_EVERY = 4096  # messages between two updates of the bar: its cost stays out of the loop
 
 
 def _audit_one(path: Path, kwargs: dict[str, Any]) -> tuple[Report | None, tuple[Finding, ...]]:
@@ -354,18 +367,27 @@ def _audit_one(path: Path, kwargs: dict[str, Any]) -> tuple[Report | None, tuple
         return None, exc.findings
 
 
-def audit_all(paths: list[Path], target: str, jobs: int = 1, **kwargs: Any) -> list[Report]:
+def audit_all(
+    paths: list[Path], target: str, jobs: int = 1, show_progress: bool = False, **kwargs: Any
+) -> list[Report]:
     """Audit several recordings, ``jobs`` of them at a time in separate processes (each is
     one CPU-bound stream). Every recording is audited; the input errors of all of them are
-    raised together, so one unreadable recording does not hide another's."""
+    raised together, so one unreadable recording does not hide another's. ``show_progress``:
+    the messages of each recording on a terminal, or the recordings done with ``jobs``."""
     kwargs["target"] = target
     if jobs <= 1 or len(paths) <= 1:
-        outcomes = [_audit_one(p, kwargs) for p in paths]
+        outcomes = [_audit_one(p, kwargs | {"show_progress": show_progress}) for p in paths]
     else:
-        from concurrent.futures import ProcessPoolExecutor
+        from concurrent.futures import ProcessPoolExecutor, as_completed
 
-        with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
-            outcomes = list(pool.map(_audit_one, paths, [kwargs] * len(paths)))
+        with (
+            ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool,
+            counting(len(paths), "tf-audit", "recording", show_progress) as step,
+        ):
+            futures = [pool.submit(_audit_one, p, kwargs) for p in paths]
+            for _ in as_completed(futures):
+                step(1)
+            outcomes = [f.result() for f in futures]
     errors = [f for _, findings in outcomes for f in findings]
     if errors:
         raise InputError(errors)

@@ -1,0 +1,49 @@
+"""Progress of long work, shown on a terminal and nowhere else.
+
+An audit of many files, a long recording's tf-audit and a sweep take seconds to minutes; on a
+terminal tqdm draws a bar on stderr. In a pipe, a log, CI (``CI`` set, as every CI service sets
+it) or a machine-readable format nothing is written: stdout and stderr stay exactly what the
+command reports. tqdm is imported only when a bar is drawn (cold start).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
+Step = Callable[[int], None]
+
+
+def wanted(text_output: bool = True) -> bool:
+    """Whether to draw progress: text output, stderr a terminal, not in CI."""
+    return text_output and sys.stderr.isatty() and not os.environ.get("CI")
+
+
+def _nothing(n: int = 1) -> None:
+    return None
+
+
+@contextmanager
+def counting(total: int | None, what: str, unit: str, show: bool) -> Iterator[Step]:
+    """A function to call with each step's count (``step(1)``); a bar of ``total`` steps on
+    stderr while the block runs when ``show``, else a function that does nothing. The bar is
+    cleared when the block ends, so the command's own report follows on a clean line."""
+    if not show:
+        yield _nothing
+        return
+    from tqdm import tqdm
+
+    # no monitor thread: a bar is drawn from the working thread, and a thread alive while
+    # `audit --jobs` forks its workers is what fork-safety warnings are about
+    tqdm.monitor_interval = 0
+    bar = tqdm(total=total, desc=what, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
+
+    def step(n: int = 1) -> None:
+        bar.update(n)
+
+    try:
+        yield step
+    finally:
+        bar.close()

@@ -1,0 +1,94 @@
+"""``descgen audit`` over many descriptions: ``--jobs N`` audits them in separate processes and
+reports exactly what one process reports, in the order given; progress is drawn on a terminal
+and nowhere else (not in a pipe, not in CI, not with --format json). Oracles: the same audit in
+one process, and each description audited alone."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.corpus import descriptions, share
+from tests.helpers import ROOT, cli, on_a_terminal
+
+CORPUS = {i: u for i, u, _ in descriptions()}
+SMALL = [
+    "double_pendulum_description/urdf/double_pendulum.urdf",
+    "simple_humanoid_description/urdf/simple_humanoid.urdf",
+    "iris_description/robots/iris.urdf",
+    "quadruped_description/urdf/quadruped.urdf",
+]
+pytestmark = pytest.mark.skipif(not all(i in CORPUS for i in SMALL), reason="example-robot-data is not installed")
+
+
+def _paths(tmp_path: Path) -> list[str]:
+    broken = tmp_path / "broken.urdf"
+    broken.write_text('<robot name="r"><link name="a">')  # unusable: its READ error, exit 2
+    files = [str(CORPUS[i]) for i in SMALL]
+    return [*files[:2], str(broken), *files[2:]]
+
+
+def test_jobs_report_what_one_process_reports_in_the_order_given(tmp_path: Path) -> None:
+    paths = _paths(tmp_path)
+    one = cli("audit", "--format", "json", *paths)
+    three = cli("audit", "--format", "json", "--jobs", "3", *paths)
+    assert one.returncode == three.returncode == 2  # the broken file is an input error, the rest still audited
+    assert three.stdout == one.stdout
+    # and one process reports each description's own audit, in the order given
+    alone = [json.loads(cli("audit", "--format", "json", p).stdout)["findings"] for p in paths]
+    assert json.loads(one.stdout)["findings"] == [f for fs in alone for f in fs]
+
+
+def test_a_worker_keeps_the_mesh_facts_it_measured(tmp_path: Path) -> None:
+    cache = tmp_path / "cache"
+    paths = [str(CORPUS[i]) for i in SMALL[:2]]
+    env = {**os.environ, "DESCGEN_CACHE_DIR": str(cache)}
+    where = ["--package-path", str(share())]  # their meshes are package://example-robot-data/...
+    done = subprocess.run(
+        [sys.executable, "-m", "descgen", "audit", "--jobs", "2", *where, *paths],
+        capture_output=True,
+        text=True,
+        env=env,
+    )
+    assert done.returncode in (0, 1), done.stderr
+    (index_file,) = cache.glob("meshes*/stat-index")  # descgen/mesh_cache.py's versioned folder
+    index = index_file.read_text()
+    # the pool's processes end without atexit: the index is saved as meshes are measured
+    assert "double_pendulum" in index and "simple_humanoid" in index
+
+
+@pytest.mark.parametrize(
+    ("extra", "ci", "drawn"),
+    [([], False, True), (["--format", "json"], False, False), ([], True, False)],
+    ids=["terminal", "json on a terminal", "CI on a terminal"],
+)
+def test_progress_is_drawn_on_a_terminal_only(tmp_path: Path, extra: list[str], ci: bool, drawn: bool) -> None:
+    env = {k: v for k, v in os.environ.items() if k != "CI"} | {"DESCGEN_CACHE_DIR": ""}
+    if ci:
+        env["CI"] = "true"
+    paths = [str(CORPUS[i]) for i in SMALL[:3]]
+    shown = on_a_terminal(["audit", *extra, *paths], env)
+    # tqdm's bar: "audit:   0%|...| 0/3 [...file/s]" (it redraws at most every 0.1 s, then clears)
+    assert ("audit:" in shown and "/3 [" in shown and "file/s" in shown) is drawn, shown[:500]
+
+
+def test_no_progress_in_a_pipe() -> None:
+    paths = [str(CORPUS[i]) for i in SMALL[:3]]
+    env = {k: v for k, v in os.environ.items() if k != "CI"} | {"DESCGEN_CACHE_DIR": ""}
+    done = subprocess.run(
+        [sys.executable, "-m", "descgen", "audit", *paths], capture_output=True, text=True, cwd=ROOT, env=env
+    )
+    assert "audit:" not in done.stderr and "\r" not in done.stderr
+    assert "audited 3 description(s)" in done.stdout
+
+
+@pytest.mark.parametrize("bad", ["0", "65", "two"])
+def test_a_bad_jobs_count_is_exit_2(bad: str) -> None:
+    done = cli("audit", "--jobs", bad, str(CORPUS[SMALL[0]]))
+    assert done.returncode == 2
+    assert "--jobs" in done.stderr and "Traceback" not in done.stderr
