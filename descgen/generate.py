@@ -2,8 +2,9 @@
 or compare it with what is committed.
 
 A spec with ``moveit:`` has a second package, ``<robot>_moveit_config`` (descgen/moveit/),
-beside the description package. Each package is switched as a whole by :func:`write_package`,
-so the two are two swaps, description first: a run killed between them leaves the new
+beside the description package. Both are built before either is switched
+(:func:`write_packages`), so a failure while building changes neither, and a switch that fails
+puts the first back; only a run killed between the two switches (two renames) leaves the new
 description beside the old MoveIt package, which ``check`` reports as stale.
 
 This module is where generated files are written (:func:`write_package`). The package is
@@ -565,12 +566,25 @@ def write_package(package_dir: Path, files: Mapping[str, str | bytes]) -> Outcom
     of other commands, the user's own) are carried over unchanged. Refuses (InputError)
     links and special files in the package before anything is written; cleans up after
     earlier killed runs first."""
-    for rel in files:
-        parts = PurePosixPath(rel).parts
-        if not parts or PurePosixPath(rel).is_absolute() or ".." in parts:
-            raise ValueError(f"not a path inside the package: {rel!r}")
-    refuse_unsafe(package_dir)
-    root = package_dir.parent
+    return write_packages([(package_dir, files)])[0]
+
+
+def write_packages(packages: Sequence[tuple[Path, Mapping[str, str | bytes]]]) -> list[Outcome]:
+    """:func:`write_package` for sibling packages of one output root (the description and its
+    MoveIt config): every new package is built before any is switched, so a failure while
+    building (a full disk) changes none of them; a switch that fails puts back the ones
+    switched before it. Only a run killed between two switches leaves one package new and
+    the other old, which ``check`` reports as stale."""
+    for package_dir, files in packages:
+        for rel in files:
+            parts = PurePosixPath(rel).parts
+            if not parts or PurePosixPath(rel).is_absolute() or ".." in parts:
+                raise ValueError(f"not a path inside the package: {rel!r}")
+        refuse_unsafe(package_dir)
+    roots = {package_dir.parent for package_dir, _ in packages}
+    if len(roots) != 1:
+        raise ValueError("packages switched together share one output root")
+    (root,) = roots
     if os.path.lexists(root) and not root.is_dir():
         raise InputError(
             [_refusal("GEN042", f"the output root {root} is not a folder", "name a folder with --out", root)]
@@ -578,24 +592,63 @@ def write_package(package_dir: Path, files: Mapping[str, str | bytes]) -> Outcom
     root.mkdir(parents=True, exist_ok=True)
     with _locked(root):
         if recover(root):
-            refuse_unsafe(package_dir)  # a package put back is checked like any other
-        out = _changes(package_dir, files)
-        if not out.written and not out.removed:
-            return out
-        new = _scratch_path(root, "new", package_dir.name)
-        os.mkdir(new)
+            for package_dir, _ in packages:
+                refuse_unsafe(package_dir)  # a package put back is checked like any other
+        outs = [_changes(package_dir, files) for package_dir, files in packages]
+        todo = [
+            (package_dir, files, out)
+            for (package_dir, files), out in zip(packages, outs, strict=True)
+            if out.written or out.removed
+        ]
+        built: list[tuple[Path, Path]] = []  # (scratch folder, package folder)
         try:
-            _build(new, package_dir, files, out)
-            old = _switch(new, package_dir)
+            for package_dir, files, out in todo:
+                new = _scratch_path(root, "new", package_dir.name)
+                os.mkdir(new)
+                built.append((new, package_dir))
+                _build(new, package_dir, files, out)
         except BaseException:
-            _remove(new)
+            for new, _ in built:
+                _remove(new)
             raise
+        olds = _switch_all(built)
         _fsync(root)
-        if old is not None:
-            trash = _scratch_path(root, "trash", package_dir.name)
-            os.rename(old, trash)
-            _remove(trash)
-    return out
+        for old, package_dir in olds:
+            if old is not None:
+                trash = _scratch_path(root, "trash", package_dir.name)
+                os.rename(old, trash)
+                _remove(trash)
+    return outs
+
+
+def _switch_all(built: list[tuple[Path, Path]]) -> list[tuple[Path | None, Path]]:
+    """Switch every built package into place, in order; when one fails, the ones before it
+    are switched back (their old folders are complete) and every scratch folder is removed."""
+    done: list[tuple[Path | None, Path]] = []
+    try:
+        for new, package_dir in built:
+            done.append((_switch(new, package_dir), package_dir))
+    except BaseException:
+        for old, package_dir in reversed(done):
+            _unswitch(old, package_dir, package_dir.parent)
+        for new, _ in built[len(done) :]:
+            _remove(new)
+        raise
+    return done
+
+
+def _unswitch(old: Path | None, package_dir: Path, root: Path) -> None:
+    """Undo :func:`_switch`: the old package (``old``; None when there was none) back in place,
+    the new one removed."""
+    if old is None:
+        _remove(package_dir)
+        return
+    if not exchange(old, package_dir):
+        aside = _scratch_path(root, "new", package_dir.name)  # "new-": removed if we are killed here
+        os.rename(package_dir, aside)
+        os.rename(old, package_dir)
+        old = aside
+    _remove(old)
 
 
 def generate(
@@ -636,9 +689,12 @@ def generate(
             )
         return outcome
     try:
-        written = write_package(p.package_dir, p.content())
-        if p.moveit_dir is not None:  # the second swap (see the module docstring)
-            second = write_package(p.moveit_dir, dict(p.moveit_files))
+        packages: list[tuple[Path, Mapping[str, str | bytes]]] = [(p.package_dir, p.content())]
+        if p.moveit_dir is not None:  # built before either is switched (see the module docstring)
+            packages.append((p.moveit_dir, dict(p.moveit_files)))
+        written, *more = write_packages(packages)
+        for second in more:
+            assert p.moveit_dir is not None
             written.written += [f"{p.moveit_dir.name}/{rel}" for rel in second.written]
             written.unchanged += [f"{p.moveit_dir.name}/{rel}" for rel in second.unchanged]
             written.removed += [f"{p.moveit_dir.name}/{rel}" for rel in second.removed]

@@ -167,6 +167,75 @@ def test_interrupted_at_every_step_leaves_old_or_new(
     assert steps > 15, steps
 
 
+MOVEIT = "warehouse_arm_moveit_config"
+
+
+@pytest.mark.parametrize("raised", [OSError, KeyboardInterrupt])
+def test_two_packages_interrupted_at_every_step_are_both_old_or_both_new(
+    tmp_path: Path, swap: bool, raised: type[BaseException], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # the description and its MoveIt config: a full disk while the second is built, or a
+    # failed second switch, must not leave the first switched (generate said "nothing was
+    # changed" while the description had been)
+    for at in range(1, 400):
+        root = tmp_path / str(at)
+        first = old_package(root)
+        os.rename(first, root / MOVEIT)
+        second = root / MOVEIT
+        first = old_package(root)
+
+        def fire() -> None:
+            raise (raised(28, "No space left on device") if raised is OSError else raised())
+
+        with monkeypatch.context() as mp:
+            seen = patch_fs(mp, at, fire, swap)
+            try:
+                gen.write_packages([(first, NEW), (second, NEW)])
+                returned = True
+            except raised:
+                returned = False
+        states = (files_of(first), files_of(second))
+        assert states in ((OLD_STATE, OLD_STATE), (NEW_STATE, NEW_STATE)), f"mixed after a failure at step {at}"
+        if returned:
+            assert states == (NEW_STATE, NEW_STATE), at
+        if seen["n"] < at:
+            assert returned and not scratch(root)
+            assert at > 30  # two packages' worth of steps
+            return
+        gen.write_packages([(first, NEW), (second, NEW)])
+        assert (files_of(first), files_of(second)) == (NEW_STATE, NEW_STATE) and not scratch(root), at
+    pytest.fail("the writer never completed")
+
+
+def test_generate_that_cannot_build_the_moveit_package_changes_neither(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    project = tmp_path / "project"
+    for rel in ("specs/warehouse_arm.yaml", "specs/trajectories/ready.yaml"):
+        (project / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / rel, project / rel)
+    for pkg in (PKG, MOVEIT):
+        shutil.copytree(ROOT / "generated" / pkg, project / "generated" / pkg)
+    spec = project / "specs" / "warehouse_arm.yaml"
+    before = {pkg: files_of(project / "generated" / pkg) for pkg in (PKG, MOVEIT)}
+    text = spec.read_text()
+    assert "velocity: 90 deg/s" in text  # shoulder_lift_joint: in the URDF and MoveIt's joint_limits.yaml
+    spec.write_text(text.replace("velocity: 90 deg/s", "velocity: 80 deg/s", 1))
+    real = gen._build
+
+    def full_disk(new: Path, package_dir: Path, files: Any, out: Any) -> None:
+        if package_dir.name == MOVEIT:
+            raise OSError(28, "No space left on device", str(new))
+        real(new, package_dir, files, out)
+
+    monkeypatch.setattr(gen, "_build", full_disk)
+    with pytest.raises(InputError) as caught:
+        gen.generate(spec, project / "generated")
+    assert caught.value.findings[0].code == "GEN045" and "nothing was changed" in caught.value.findings[0].hint
+    assert {pkg: files_of(project / "generated" / pkg) for pkg in (PKG, MOVEIT)} == before
+    assert not scratch(project / "generated")
+
+
 def _killed_child(pkg: Path, at: int, swap: bool) -> int:
     """Run the writer in a forked child that SIGKILLs itself at step ``at`` (no finally, no
     clean-up runs, as with a real kill). Returns the child's wait status."""
@@ -439,7 +508,7 @@ def test_a_write_error_is_exit_2_not_a_traceback(
     def full(*args: object, **kw: object) -> object:
         raise OSError(28, "No space left on device", str(tmp_path / "generated"))
 
-    monkeypatch.setattr(gen, "write_package", full)
+    monkeypatch.setattr(gen, "write_packages", full)
     assert main(["generate", str(specs / "robot.yaml")]) == 2
     err = capsys.readouterr().err
     assert "error[GEN045]: could not write the package: No space left on device" in err
