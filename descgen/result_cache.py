@@ -117,13 +117,12 @@ def _prune(folder: Path, keep: int, most_bytes: int) -> None:
     entry per description, and stat()ing thousands after each would cost more than the audit."""
     try:
         listed = list(os.scandir(folder))
-        if (
-            len(listed) <= keep
-            and len(listed) * most_bytes <= KEEP_BYTES
-            and not any(e.name.startswith(".tmp-") for e in listed)
-        ):
-            return
         stale = time.time_ns() - STALE_TMP_NS
+        # a young temporary file is a live writer's: only a stale one makes the entries worth a stat
+        temporary = [e for e in listed if e.name.startswith(".tmp-")]
+        left_over = any(e.stat(follow_symlinks=False).st_mtime_ns < stale for e in temporary)
+        if len(listed) <= keep and len(listed) * most_bytes <= KEEP_BYTES and not left_over:
+            return
         entries = []
         for e in listed:
             if not e.is_file(follow_symlinks=False):

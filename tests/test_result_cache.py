@@ -110,6 +110,35 @@ def test_a_killed_writers_temporary_file_goes_once_it_is_old(cache: Path) -> Non
     assert result_cache.get("probe", result_cache.key("probe", 0)) == 0  # entries untouched
 
 
+def test_a_live_writers_temporary_file_does_not_make_every_write_stat_the_folder(
+    cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A young ``.tmp-*`` (another process writing now) leaves the prune's shortcut in place:
+    only the temporary file is stat()ed, not every entry (an audit writes one entry per file)."""
+    folder = cache / "results" / "probe"
+    for k in range(5):  # small entries, as the audit's findings are (most_bytes): the shortcut's case
+        result_cache.put("probe", result_cache.key("probe", k), k, most_bytes=4096)
+    (folder / ".tmp-live").write_text("{")
+    stats: list[str] = []
+    real = os.scandir
+
+    class Counted:
+        def __init__(self, entry: os.DirEntry[str]) -> None:
+            self.entry, self.name, self.path = entry, entry.name, entry.path
+
+        def is_file(self, follow_symlinks: bool = True) -> bool:
+            return self.entry.is_file(follow_symlinks=follow_symlinks)
+
+        def stat(self, follow_symlinks: bool = True) -> os.stat_result:
+            stats.append(self.name)
+            return self.entry.stat(follow_symlinks=follow_symlinks)
+
+    monkeypatch.setattr(result_cache.os, "scandir", lambda path: [Counted(e) for e in real(path)])
+    result_cache.put("probe", result_cache.key("probe", 5), 5, most_bytes=4096)
+    assert stats == [".tmp-live"]
+    assert (folder / ".tmp-live").exists()
+
+
 def test_the_key_holds_descgen_source_and_tool_versions(monkeypatch: pytest.MonkeyPatch) -> None:
     k = result_cache.key("probe", 1, ("xacro",))
     monkeypatch.setattr(evidence_hash, "source_digest", lambda: "edited")
