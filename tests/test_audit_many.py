@@ -92,3 +92,37 @@ def test_a_bad_jobs_count_is_exit_2(bad: str) -> None:
     done = cli("audit", "--jobs", bad, str(CORPUS[SMALL[0]]))
     assert done.returncode == 2
     assert "--jobs" in done.stderr and "Traceback" not in done.stderr
+
+
+@pytest.mark.e2e
+def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
+    import signal
+    import time
+
+    # 100 copies of a 1000-link chain: several seconds of work for two processes
+    links = "".join(f'<link name="l{i}"/>' for i in range(1000))
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+        '<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        for i in range(999)
+    )
+    text = f'<robot name="r">{links}{joints}</robot>'
+    paths = []
+    for k in range(100):
+        path = tmp_path / f"r{k}.urdf"
+        path.write_text(text)
+        paths.append(str(path))
+    env = {**os.environ, "DESCGEN_CACHE_DIR": ""}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "descgen", "audit", "--jobs", "2", *paths],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+        start_new_session=True,  # its own process group: Ctrl-C reaches the workers too, as in a terminal
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    time.sleep(1.5)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err[-500:]
+    assert b"Traceback" not in err

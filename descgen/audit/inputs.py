@@ -173,8 +173,13 @@ def audit_paths(
 
         with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
             futures = [pool.submit(_audit_one, path, options) for path in paths]
-            for _ in as_completed(futures):
-                done(1)
+            try:
+                for _ in as_completed(futures):
+                    done(1)
+            except BaseException:  # Ctrl-C: what has not started does not start
+                for f in futures:
+                    f.cancel()
+                raise
             outcomes = [f.result() for f in futures]
     found = [f for fs, _ in outcomes for f in fs]
     return found, any(unusable for _, unusable in outcomes)

@@ -385,8 +385,13 @@ def audit_all(
             counting(len(paths), "tf-audit", "recording", show_progress) as step,
         ):
             futures = [pool.submit(_audit_one, p, kwargs) for p in paths]
-            for _ in as_completed(futures):
-                step(1)
+            try:
+                for _ in as_completed(futures):
+                    step(1)
+            except BaseException:  # Ctrl-C: what has not started does not start
+                for f in futures:
+                    f.cancel()
+                raise
             outcomes = [f.result() for f in futures]
     errors = [f for _, findings in outcomes for f in findings]
     if errors:
