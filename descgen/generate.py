@@ -611,19 +611,45 @@ def write_packages(packages: Sequence[tuple[Path, Mapping[str, str | bytes]]]) -
             for new, _ in built:
                 _remove(new)
             raise
-        olds = _switch_all(built)
-        _fsync(root)
-        for old, package_dir in olds:
-            if old is not None:
-                trash = _scratch_path(root, "trash", package_dir.name)
-                os.rename(old, trash)
-                _remove(trash)
+        with _signals_held():
+            olds = _switch_all(built)
+        # the packages are switched: what is left is clean-up, which the next run's recover()
+        # also does, so a failure here is no failure of the write
+        with contextlib.suppress(OSError):
+            _fsync(root)
+            for old, package_dir in olds:
+                if old is not None:
+                    trash = _scratch_path(root, "trash", package_dir.name)
+                    os.rename(old, trash)
+                    _remove(trash)
     return outs
+
+
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """Ctrl-C (SIGINT) and SIGTERM wait while the packages are switched (a few renames): an
+    interruption raised just after a rename returned, before its result is recorded, could
+    otherwise leave one package new and the other old. They are delivered when the block
+    ends. Only in the main thread (the only one a signal handler runs in), where the system
+    has pthread_sigmask."""
+    import signal
+    import threading
+
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held = {signal.SIGINT, signal.SIGTERM}
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
 def _switch_all(built: list[tuple[Path, Path]]) -> list[tuple[Path | None, Path]]:
     """Switch every built package into place, in order; when one fails, the ones before it
-    are switched back (their old folders are complete) and every scratch folder is removed."""
+    are switched back (their old folders are complete) and every scratch folder is removed.
+    Two failures in a row (the switch and its undo) can leave them apart; ``check`` says so."""
     done: list[tuple[Path | None, Path]] = []
     try:
         for new, package_dir in built:
@@ -639,16 +665,16 @@ def _switch_all(built: list[tuple[Path, Path]]) -> list[tuple[Path | None, Path]
 
 def _unswitch(old: Path | None, package_dir: Path, root: Path) -> None:
     """Undo :func:`_switch`: the old package (``old``; None when there was none) back in place,
-    the new one removed."""
+    the new one moved aside in one rename, then removed."""
+    aside = _scratch_path(root, "trash", package_dir.name)
     if old is None:
-        _remove(package_dir)
-        return
-    if not exchange(old, package_dir):
-        aside = _scratch_path(root, "new", package_dir.name)  # "new-": removed if we are killed here
+        os.rename(package_dir, aside)  # gone in one step, never half deleted in place
+    elif exchange(old, package_dir):
+        aside = old
+    else:
         os.rename(package_dir, aside)
         os.rename(old, package_dir)
-        old = aside
-    _remove(old)
+    _remove(aside)
 
 
 def generate(

@@ -17,8 +17,10 @@ Step = Callable[[int], None]
 
 
 def wanted(text_output: bool = True) -> bool:
-    """Whether to draw progress: text output, stderr a terminal, not in CI."""
-    return text_output and sys.stderr.isatty() and not os.environ.get("CI")
+    """Whether to draw progress: text output, stderr a terminal, not in CI (``CI`` set to
+    anything but empty, ``0`` or ``false``, as CI services set it to ``true`` or ``1``)."""
+    in_ci = os.environ.get("CI", "").strip().lower() not in ("", "0", "false")
+    return text_output and sys.stderr.isatty() and not in_ci
 
 
 def _nothing(n: int = 1) -> None:

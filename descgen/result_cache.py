@@ -105,6 +105,18 @@ def put(kind: str, k: str, value: object, keep: int | None = None, most_bytes: i
     _prune(folder, keep, most_bytes)
 
 
+def _stale_temporary(e: os.DirEntry[str], stale: int) -> bool:
+    """A ``.tmp-`` entry a writer left over an hour ago: a regular file or a link (unlinked,
+    never followed); a folder of that name is no writer's and is left alone. One that is gone
+    already (its writer renamed it) is not left over."""
+    try:
+        if e.is_dir(follow_symlinks=False):
+            return False
+        return e.stat(follow_symlinks=False).st_mtime_ns < stale
+    except FileNotFoundError:
+        return False
+
+
 def _no_constant(name: str) -> None:
     raise ValueError(f"{name} is not a number descgen writes")
 
@@ -119,19 +131,24 @@ def _prune(folder: Path, keep: int, most_bytes: int) -> None:
         listed = list(os.scandir(folder))
         stale = time.time_ns() - STALE_TMP_NS
         # a young temporary file is a live writer's: only a stale one makes the entries worth a stat
-        temporary = [e for e in listed if e.name.startswith(".tmp-")]
-        left_over = any(e.stat(follow_symlinks=False).st_mtime_ns < stale for e in temporary)
+        left_over = any(_stale_temporary(e, stale) for e in listed if e.name.startswith(".tmp-"))
         if len(listed) <= keep and len(listed) * most_bytes <= KEEP_BYTES and not left_over:
             return
         entries = []
         for e in listed:
+            if e.name.startswith(".tmp-"):
+                if _stale_temporary(e, stale):  # a live writer's is younger
+                    with contextlib.suppress(FileNotFoundError):
+                        os.unlink(e.path)
+                continue
             if not e.is_file(follow_symlinks=False):
                 continue
-            st = e.stat(follow_symlinks=False)
+            try:
+                st = e.stat(follow_symlinks=False)
+            except FileNotFoundError:  # another process pruned it
+                continue
             if e.name.endswith(".json"):
                 entries.append((st.st_mtime_ns, st.st_size, e.path))
-            elif e.name.startswith(".tmp-") and st.st_mtime_ns < stale:  # a live writer's is younger
-                os.unlink(e.path)
         entries.sort(reverse=True)  # newest first
         kept = 0
         for i, (_, size, path) in enumerate(entries):

@@ -207,6 +207,59 @@ def test_two_packages_interrupted_at_every_step_are_both_old_or_both_new(
     pytest.fail("the writer never completed")
 
 
+def _ctrl_c_after_each_rename(tmp_path: Path, swap: bool) -> None:
+    """Run by the test below in a fresh interpreter: a signal is held only in the main thread,
+    and pytest-xdist runs tests in another one."""
+    import signal
+
+    for at in range(1, 400):
+        root = tmp_path / str(at)
+        first = old_package(root)
+        os.rename(first, root / MOVEIT)
+        second = root / MOVEIT
+        first = old_package(root)
+        seen = {"n": 0, "at": at}
+
+        def after(real: Callable[..., Any], seen: dict[str, int] = seen) -> Callable[..., Any]:
+            def op(*args: Any, **kwargs: Any) -> Any:
+                result = real(*args, **kwargs)
+                seen["n"] += 1
+                if seen["n"] == seen["at"]:
+                    os.kill(os.getpid(), signal.SIGINT)
+                return result
+
+            return op
+
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(os, "rename", after(os.rename))
+            mp.setattr(gen, "exchange", after(gen.exchange if swap else lambda a, b: False))
+            try:
+                gen.write_packages([(first, NEW), (second, NEW)])
+                interrupted = False
+            except KeyboardInterrupt:
+                interrupted = True
+        states = (files_of(first), files_of(second))
+        assert states in ((OLD_STATE, OLD_STATE), (NEW_STATE, NEW_STATE)), f"mixed after Ctrl-C at rename {at}"
+        if not interrupted:
+            assert states == (NEW_STATE, NEW_STATE) and seen["n"] < at
+            return
+        gen.write_packages([(first, NEW), (second, NEW)])
+        assert (files_of(first), files_of(second)) == (NEW_STATE, NEW_STATE) and not scratch(root), at
+    raise AssertionError("the writer never completed")
+
+
+def test_ctrl_c_just_after_any_rename_leaves_both_old_or_both_new(tmp_path: Path, swap: bool) -> None:
+    # a signal arriving while a rename runs is raised by Python just after it returns, before
+    # the writer records what it did: the switch holds SIGINT until both packages are in place
+    code = (
+        "import sys; from pathlib import Path; from tests.test_atomic_write import _ctrl_c_after_each_rename; "
+        "_ctrl_c_after_each_rename(Path(sys.argv[1]), sys.argv[2] == 'exchange')"
+    )
+    mode = "exchange" if swap else "fallback"
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path), mode], capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-2000:]
+
+
 def test_generate_that_cannot_build_the_moveit_package_changes_neither(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -126,3 +126,81 @@ def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err[-500:]
     assert b"Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("ci", "drawn"),
+    [(None, True), ("", True), ("false", True), ("0", True), ("true", False), ("1", False), ("yes", False)],
+)
+def test_ci_is_what_ci_services_set(ci: str | None, drawn: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    from types import SimpleNamespace
+
+    from descgen import progress
+
+    monkeypatch.setattr(progress.sys, "stderr", SimpleNamespace(isatty=lambda: True))
+    if ci is None:
+        monkeypatch.delenv("CI", raising=False)
+    else:
+        monkeypatch.setenv("CI", ci)
+    assert progress.wanted() is drawn
+    assert progress.wanted(text_output=False) is False
+
+
+_DIES: dict[str, object] = {}  # set by the test below; read in the forked workers
+
+
+def _fragile(path: Path, options: object) -> tuple[list[object], bool]:
+    """The audit, except that a worker (not the parent) auditing the chosen file is killed."""
+    import signal
+
+    if path == _DIES["path"] and os.getpid() != _DIES["parent"]:
+        os.kill(os.getpid(), signal.SIGKILL)
+    real = _DIES["real"]
+    return real(path, options)  # type: ignore[operator, no-any-return]
+
+
+def test_a_worker_that_dies_is_replaced_by_the_parent(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # as the out-of-memory killer would: the worker auditing one file is killed outright
+    from descgen.audit import inputs
+
+    paths = [Path(p) for p in _paths(tmp_path)]
+    want = inputs.audit_paths(paths, inputs.Options(), jobs=1)
+    monkeypatch.setitem(_DIES, "path", paths[1])
+    monkeypatch.setitem(_DIES, "parent", os.getpid())
+    monkeypatch.setitem(_DIES, "real", inputs._audit_one)
+    monkeypatch.setattr(inputs, "_audit_one", _fragile)
+    assert inputs.audit_paths(paths, inputs.Options(), jobs=2) == want
+
+
+@pytest.mark.e2e
+def test_sigterm_to_the_parent_alone_leaves_no_worker(tmp_path: Path) -> None:
+    import time
+
+    links = "".join(f'<link name="l{i}"/>' for i in range(1000))
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+        '<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        for i in range(999)
+    )
+    folder = tmp_path / "sigterm-probe"
+    folder.mkdir()
+    paths = []
+    for k in range(100):
+        path = folder / f"r{k}.urdf"
+        path.write_text(f'<robot name="r">{links}{joints}</robot>')
+        paths.append(str(path))
+    env = {**os.environ, "DESCGEN_CACHE_DIR": ""}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "descgen", "audit", "--jobs", "2", *paths],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+    )
+    time.sleep(1.5)
+    proc.terminate()  # SIGTERM to the parent only, as Popen.terminate() and CI runners send it
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143, err[-500:]
+    assert b"Traceback" not in err
+    time.sleep(0.5)
+    left = subprocess.run(["pgrep", "-f", str(folder)], capture_output=True, text=True).stdout.split()
+    assert left == [], "workers left running"

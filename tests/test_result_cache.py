@@ -129,6 +129,9 @@ def test_a_live_writers_temporary_file_does_not_make_every_write_stat_the_folder
         def is_file(self, follow_symlinks: bool = True) -> bool:
             return self.entry.is_file(follow_symlinks=follow_symlinks)
 
+        def is_dir(self, follow_symlinks: bool = True) -> bool:
+            return self.entry.is_dir(follow_symlinks=follow_symlinks)
+
         def stat(self, follow_symlinks: bool = True) -> os.stat_result:
             stats.append(self.name)
             return self.entry.stat(follow_symlinks=follow_symlinks)
@@ -137,6 +140,53 @@ def test_a_live_writers_temporary_file_does_not_make_every_write_stat_the_folder
     result_cache.put("probe", result_cache.key("probe", 5), 5, most_bytes=4096)
     assert stats == [".tmp-live"]
     assert (folder / ".tmp-live").exists()
+
+
+def test_a_stale_temporary_link_goes_and_a_temporary_folder_is_left_alone(cache: Path) -> None:
+    folder = cache / "results" / "probe"
+    result_cache.put("probe", result_cache.key("probe", 0), 0, most_bytes=4096)
+    target = cache / "target.txt"
+    target.write_text("not the cache's")
+    link, odd = folder / ".tmp-link", folder / ".tmp-folder"
+    link.symlink_to(target)
+    odd.mkdir()
+    two_hours_ago = time.time_ns() - 2 * 3600 * 10**9
+    os.utime(link, ns=(two_hours_ago, two_hours_ago), follow_symlinks=False)
+    os.utime(odd, ns=(two_hours_ago, two_hours_ago))
+    result_cache.put("probe", result_cache.key("probe", 1), 1, most_bytes=4096)
+    assert not os.path.lexists(link) and target.read_text() == "not the cache's"  # unlinked, never followed
+    assert odd.is_dir()  # no writer makes a folder: not ours to remove
+
+
+def test_a_temporary_file_renamed_away_during_the_prune_does_not_stop_it(
+    cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # another writer's .tmp- file is listed, then renamed into place before it is stat()ed
+    folder = cache / "results" / "probe"
+    keys = [result_cache.key("probe", k) for k in range(4)]
+    for k, key in enumerate(keys):
+        result_cache.put("probe", key, k, keep=2, most_bytes=4096)
+        os.utime(folder / f"{key}.json", ns=(10**18 + k * 10**9, 10**18 + k * 10**9))  # an order of use
+    real = os.scandir
+
+    class Vanished:
+        name, path = ".tmp-gone", str(folder / ".tmp-gone")
+
+        def is_dir(self, follow_symlinks: bool = True) -> bool:
+            raise FileNotFoundError(self.path)
+
+        def is_file(self, follow_symlinks: bool = True) -> bool:
+            raise FileNotFoundError(self.path)
+
+        def stat(self, follow_symlinks: bool = True) -> os.stat_result:
+            raise FileNotFoundError(self.path)
+
+    monkeypatch.setattr(result_cache.os, "scandir", lambda path: [*real(path), Vanished()])
+    newest = result_cache.key("probe", 9)
+    result_cache.put("probe", newest, 9, keep=2, most_bytes=4096)
+    monkeypatch.undo()
+    left = sorted(p.name for p in folder.iterdir())
+    assert left == sorted([f"{keys[3]}.json", f"{newest}.json"])  # pruned to the 2 used last
 
 
 def test_the_key_holds_descgen_source_and_tool_versions(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -154,33 +154,19 @@ def audit_paths(
     """Every finding of every description in ``paths``, in their order, and whether any was
     unusable (its input errors are among the findings, so one unreadable file does not hide
     the others'). ``jobs`` > 1 audits that many at once in separate processes (an audit is
-    CPU-bound Python; a pool's process ends without atexit, and keeps the mesh facts it measured
-    because descgen/meshes.py saves the index as it measures); ``step(1)`` is called as each
-    one is done."""
-    done = step or (lambda n: None)
-    if jobs <= 1 or len(paths) <= 1:
-        outcomes = []
-        for path in paths:
-            outcomes.append(_audit_one(path, options))
-            done(1)
-    else:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+    CPU-bound Python; descgen/workers.py: a worker that dies is replaced by this process; a
+    worker ends without atexit, and keeps the mesh facts it measured because descgen/meshes.py
+    saves the index as it measures); ``step(1)`` is called as each one is done."""
+    from functools import partial
 
+    from ..workers import map_in_processes
+
+    if jobs > 1 and len(paths) > 1:
         from ..readers import urdf  # noqa: F401  (imported once here: forked workers start with it)
         from .registry import load
 
         load()
-
-        with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
-            futures = [pool.submit(_audit_one, path, options) for path in paths]
-            try:
-                for _ in as_completed(futures):
-                    done(1)
-            except BaseException:  # Ctrl-C: what has not started does not start
-                for f in futures:
-                    f.cancel()
-                raise
-            outcomes = [f.result() for f in futures]
+    outcomes = map_in_processes(partial(_audit_one, options=options), paths, jobs, step)
     found = [f for fs, _ in outcomes for f in fs]
     return found, any(unusable for _, unusable in outcomes)
 

@@ -378,21 +378,12 @@ def audit_all(
     if jobs <= 1 or len(paths) <= 1:
         outcomes = [_audit_one(p, kwargs | {"show_progress": show_progress}) for p in paths]
     else:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+        from functools import partial
 
-        with (
-            ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool,
-            counting(len(paths), "tf-audit", "recording", show_progress) as step,
-        ):
-            futures = [pool.submit(_audit_one, p, kwargs) for p in paths]
-            try:
-                for _ in as_completed(futures):
-                    step(1)
-            except BaseException:  # Ctrl-C: what has not started does not start
-                for f in futures:
-                    f.cancel()
-                raise
-            outcomes = [f.result() for f in futures]
+        from ..workers import map_in_processes
+
+        with counting(len(paths), "tf-audit", "recording", show_progress) as step:
+            outcomes = map_in_processes(partial(_audit_one, kwargs=kwargs), paths, jobs, step)
     errors = [f for _, findings in outcomes for f in findings]
     if errors:
         raise InputError(errors)

@@ -1,0 +1,90 @@
+"""Work spread over processes (``audit --jobs``, ``tf-audit --jobs``), as dependable as the same
+work in one process.
+
+Each item is done by ``fn`` in a worker (forked: it starts with what the parent imported); the
+results come back in the items' order. What can go wrong with processes is handled here, so a
+command never shows it as a traceback or a hang:
+
+- a worker that dies (killed by the system when memory runs out): the items it had not
+  finished are done again in this process, one by one, as ``--jobs 1`` would;
+- workers that cannot be started (too many open files): the same;
+- Ctrl-C, or SIGTERM to this process alone (``Popen.terminate()``, a CI runner's timeout):
+  items not started are dropped, running workers are terminated, and the interruption goes
+  on (exit 130, or 143 for SIGTERM), leaving no worker behind.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import TypeVar
+
+from .progress import Step
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+SIGTERM_EXIT = 128 + signal.SIGTERM
+
+
+def map_in_processes(fn: Callable[[T], R], items: Sequence[T], jobs: int, step: Step | None = None) -> list[R]:
+    """``[fn(x) for x in items]``, up to ``jobs`` at once in worker processes (never more than
+    the items or the CPUs: CPU-bound work gains nothing beyond them); ``step(1)`` as each is done."""
+    done = step or (lambda n: None)
+    workers = min(jobs, len(items), os.cpu_count() or 1)
+    results: dict[int, R] = {}
+    if workers > 1:
+        _in_workers(fn, items, workers, results, done)
+    for i, item in enumerate(items):  # everything, or what the workers could not finish
+        if i not in results:
+            results[i] = fn(item)
+            done(1)
+    return [results[i] for i in range(len(items))]
+
+
+def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results: dict[int, R], done: Step) -> None:
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
+
+    pool = ProcessPoolExecutor(max_workers=workers)
+    futures = {}
+    try:
+        with _sigterm_raises():
+            try:
+                for i, item in enumerate(items):
+                    futures[pool.submit(fn, item)] = i
+                for future in as_completed(futures):
+                    results[futures[future]] = future.result()
+                    done(1)
+            except (BrokenProcessPool, OSError):
+                pass  # a worker died or could not start: the caller does the rest in this process
+    except BaseException:  # Ctrl-C, SIGTERM, or fn's own error: drop what has not started
+        for future in futures:
+            future.cancel()
+        for child in multiprocessing.active_children():
+            child.terminate()
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+@contextmanager
+def _sigterm_raises() -> Iterator[None]:
+    """SIGTERM to this process becomes SystemExit(143) while workers run, so they are
+    terminated with it instead of being left waiting on a pipe (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum: int, frame: object) -> None:
+        raise SystemExit(SIGTERM_EXIT)
+
+    before = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, before)
