@@ -631,7 +631,9 @@ def _signals_held() -> Iterator[None]:
     interruption raised just after a rename returned, before its result is recorded, could
     otherwise leave one package new and the other old. They are delivered when the block
     ends. Only in the main thread (the only one a signal handler runs in), where the system
-    has pthread_sigmask."""
+    has pthread_sigmask; a program that embeds this with other threads running may still see
+    the interruption inside (a thread that does not block the signal takes it, and Python
+    raises it in the main thread): the CLI starts none."""
     import signal
     import threading
 

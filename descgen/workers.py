@@ -10,7 +10,9 @@ command never shows it as a traceback or a hang:
 - workers that cannot be started (too many open files): the same;
 - Ctrl-C, or SIGTERM to this process alone (``Popen.terminate()``, a CI runner's timeout):
   items not started are dropped, running workers are terminated, and the interruption goes
-  on (exit 130, or 143 for SIGTERM), leaving no worker behind.
+  on (exit 130, or 143 for SIGTERM), leaving no worker behind. The signals wait while workers
+  are forked (one handled inside a fork would be lost, or leave a worker unrecorded), and a
+  worker dies on SIGTERM, not through the handler it was forked with.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ def map_in_processes(fn: Callable[[T], R], items: Sequence[T], jobs: int, step: 
     """``[fn(x) for x in items]``, up to ``jobs`` at once in worker processes (never more than
     the items or the CPUs: CPU-bound work gains nothing beyond them); ``step(1)`` as each is done."""
     done = step or (lambda n: None)
-    workers = min(jobs, len(items), os.cpu_count() or 1)
+    workers = min(jobs, len(items), _cpus())
     results: dict[int, R] = {}
     if workers > 1:
         _in_workers(fn, items, workers, results, done)
@@ -50,13 +52,18 @@ def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results:
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(max_workers=workers)
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start)
     futures = {}
     try:
         with _sigterm_raises():
             try:
-                for i, item in enumerate(items):
-                    futures[pool.submit(fn, item)] = i
+                # the workers are forked, and the pool's threads started, by the submits: a
+                # signal handled in the middle of that would be lost in a fork hook or leave a
+                # worker nobody knows of, so SIGINT and SIGTERM wait until they are started
+                # (the pool's threads keep them blocked; the workers unblock them)
+                with _held(signal.SIGINT, signal.SIGTERM):
+                    for i, item in enumerate(items):
+                        futures[pool.submit(fn, item)] = i
                 for future in as_completed(futures):
                     results[futures[future]] = future.result()
                     done(1)
@@ -70,6 +77,36 @@ def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results:
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _cpus() -> int:
+    """The CPUs this process may run on (its affinity, where the system tells it)."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+def _worker_start() -> None:
+    """In each worker: SIGTERM ends it at once (the parent's terminate()), not through the
+    parent's handler it was forked with, and the signals held while it was forked are let through."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+
+
+@contextmanager
+def _held(*signums: int) -> Iterator[None]:
+    """Block ``signums`` in this thread (and the threads it starts) for the block; a signal
+    that came meanwhile is delivered when it ends."""
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, set(signums))
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
 @contextmanager
