@@ -170,6 +170,12 @@ def test_interrupted_at_every_step_leaves_old_or_new(
 MOVEIT = "warehouse_arm_moveit_config"
 
 
+def _two_old_packages(root: Path) -> tuple[Path, Path]:
+    """The old description package and a MoveIt package beside it, both in OLD_STATE."""
+    os.rename(old_package(root), root / MOVEIT)
+    return old_package(root), root / MOVEIT
+
+
 @pytest.mark.parametrize("raised", [OSError, KeyboardInterrupt])
 def test_two_packages_interrupted_at_every_step_are_both_old_or_both_new(
     tmp_path: Path, swap: bool, raised: type[BaseException], monkeypatch: pytest.MonkeyPatch
@@ -179,10 +185,7 @@ def test_two_packages_interrupted_at_every_step_are_both_old_or_both_new(
     # changed" while the description had been)
     for at in range(1, 400):
         root = tmp_path / str(at)
-        first = old_package(root)
-        os.rename(first, root / MOVEIT)
-        second = root / MOVEIT
-        first = old_package(root)
+        first, second = _two_old_packages(root)
 
         def fire() -> None:
             raise (raised(28, "No space left on device") if raised is OSError else raised())
@@ -214,10 +217,7 @@ def _ctrl_c_after_each_rename(tmp_path: Path, swap: bool) -> None:
 
     for at in range(1, 400):
         root = tmp_path / str(at)
-        first = old_package(root)
-        os.rename(first, root / MOVEIT)
-        second = root / MOVEIT
-        first = old_package(root)
+        first, second = _two_old_packages(root)
         seen = {"n": 0, "at": at}
 
         def after(real: Callable[..., Any], seen: dict[str, int] = seen) -> Callable[..., Any]:

@@ -94,12 +94,8 @@ def test_a_bad_jobs_count_is_exit_2(bad: str) -> None:
     assert "--jobs" in done.stderr and "Traceback" not in done.stderr
 
 
-@pytest.mark.e2e
-def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
-    import signal
-    import time
-
-    # 100 copies of a 1000-link chain: several seconds of work for two processes
+def _chains(folder: Path) -> list[str]:
+    """100 copies of a 1000-link chain in ``folder``: several seconds of work for two processes."""
     links = "".join(f'<link name="l{i}"/>' for i in range(1000))
     joints = "".join(
         f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
@@ -109,18 +105,33 @@ def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
     text = f'<robot name="r">{links}{joints}</robot>'
     paths = []
     for k in range(100):
-        path = tmp_path / f"r{k}.urdf"
+        path = folder / f"r{k}.urdf"
         path.write_text(text)
         paths.append(str(path))
-    env = {**os.environ, "DESCGEN_CACHE_DIR": ""}
-    proc = subprocess.Popen(
+    return paths
+
+
+def _audit_in_background(paths: list[str], start_new_session: bool = False) -> subprocess.Popen[bytes]:
+    """``descgen audit --jobs 2 PATHS`` started and left running, SIGINT at its default."""
+    import signal
+
+    return subprocess.Popen(
         [sys.executable, "-m", "descgen", "audit", "--jobs", "2", *paths],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
-        env=env,
-        start_new_session=True,  # its own process group: Ctrl-C reaches the workers too, as in a terminal
+        env={**os.environ, "DESCGEN_CACHE_DIR": ""},
+        start_new_session=start_new_session,
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
+
+
+@pytest.mark.e2e
+def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
+    import signal
+    import time
+
+    # its own process group, SIGINT not ignored: Ctrl-C reaches the workers too, as in a terminal
+    proc = _audit_in_background(_chains(tmp_path), start_new_session=True)
     time.sleep(1.5)
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)
@@ -176,26 +187,9 @@ def test_a_worker_that_dies_is_replaced_by_the_parent(tmp_path: Path, monkeypatc
 def test_sigterm_to_the_parent_alone_leaves_no_worker(tmp_path: Path) -> None:
     import time
 
-    links = "".join(f'<link name="l{i}"/>' for i in range(1000))
-    joints = "".join(
-        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
-        '<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
-        for i in range(999)
-    )
     folder = tmp_path / "sigterm-probe"
     folder.mkdir()
-    paths = []
-    for k in range(100):
-        path = folder / f"r{k}.urdf"
-        path.write_text(f'<robot name="r">{links}{joints}</robot>')
-        paths.append(str(path))
-    env = {**os.environ, "DESCGEN_CACHE_DIR": ""}
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "descgen", "audit", "--jobs", "2", *paths],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        env=env,
-    )
+    proc = _audit_in_background(_chains(folder))
     time.sleep(1.5)
     proc.terminate()  # SIGTERM to the parent only, as Popen.terminate() and CI runners send it
     _, err = proc.communicate(timeout=60)
