@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import cast
 
-from . import checks
+from . import checks, interruptions
 from .findings import Finding, InputError, Where, errors
 from .mesh_paths import MAX_MESH_BYTES, MESH_FOLDER, own_meshes, spec_folder
 from .model import Robot
@@ -611,7 +611,7 @@ def write_packages(packages: Sequence[tuple[Path, Mapping[str, str | bytes]]]) -
             for new, _ in built:
                 _remove(new)
             raise
-        with _signals_held():
+        with interruptions.held():  # a Ctrl-C raised between two switches would part them
             olds = _switch_all(built)
         # the packages are switched: what is left is clean-up, which the next run's recover()
         # also does, so a failure here is no failure of the write
@@ -623,29 +623,6 @@ def write_packages(packages: Sequence[tuple[Path, Mapping[str, str | bytes]]]) -
                     os.rename(old, trash)
                     _remove(trash)
     return outs
-
-
-@contextlib.contextmanager
-def _signals_held() -> Iterator[None]:
-    """Ctrl-C (SIGINT) and SIGTERM wait while the packages are switched (a few renames): an
-    interruption raised just after a rename returned, before its result is recorded, could
-    otherwise leave one package new and the other old. They are delivered when the block
-    ends. Only in the main thread (the only one a signal handler runs in), where the system
-    has pthread_sigmask; a program that embeds this with other threads running may still see
-    the interruption inside (a thread that does not block the signal takes it, and Python
-    raises it in the main thread): the CLI starts none."""
-    import signal
-    import threading
-
-    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    held = {signal.SIGINT, signal.SIGTERM}
-    before = signal.pthread_sigmask(signal.SIG_BLOCK, held)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
 def _switch_all(built: list[tuple[Path, Path]]) -> list[tuple[Path | None, Path]]:

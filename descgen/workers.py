@@ -24,6 +24,7 @@ from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TypeVar
 
+from . import interruptions
 from .progress import Step
 
 T = TypeVar("T")
@@ -61,7 +62,7 @@ def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results:
                 # signal handled in the middle of that would be lost in a fork hook or leave a
                 # worker nobody knows of, so SIGINT and SIGTERM wait until they are started
                 # (the pool's threads keep them blocked; the workers unblock them)
-                with _held(signal.SIGINT, signal.SIGTERM):
+                with interruptions.held():
                     for i, item in enumerate(items):
                         futures[pool.submit(fn, item)] = i
                 for future in as_completed(futures):
@@ -91,22 +92,7 @@ def _worker_start() -> None:
     """In each worker: SIGTERM ends it at once (the parent's terminate()), not through the
     parent's handler it was forked with, and the signals held while it was forked are let through."""
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    if hasattr(signal, "pthread_sigmask"):
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
-
-
-@contextmanager
-def _held(*signums: int) -> Iterator[None]:
-    """Block ``signums`` in this thread (and the threads it starts) for the block; a signal
-    that came meanwhile is delivered when it ends."""
-    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    before = signal.pthread_sigmask(signal.SIG_BLOCK, set(signums))
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, before)
+    interruptions.let_through()
 
 
 @contextmanager

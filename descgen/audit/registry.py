@@ -88,7 +88,7 @@ def at(
 
 def run(robot: Robot, codes: Iterable[str] | None = None, stage: Stage | None = None) -> list[Finding]:
     """All registered rules (or the given codes, or one stage) over one robot, in code order."""
-    from . import rules  # noqa: F401  (registers every rule module)
+    load()
 
     wanted = set(codes) if codes is not None else None
     out: list[Finding] = []
@@ -101,11 +101,11 @@ def run(robot: Robot, codes: Iterable[str] | None = None, stage: Stage | None = 
 
 
 def load() -> None:
-    """Register every rule module now (a process that forks workers imports them once, here)."""
+    """Register every rule module (imported once; a process that forks workers calls it first)."""
     from . import rules  # noqa: F401
 
 
 def iter_rules() -> Iterator[RuleInfo]:
-    from . import rules  # noqa: F401
+    load()
 
     yield from (RULES[c] for c in sorted(RULES))

@@ -154,7 +154,8 @@ def inertia_triangle_inequality(robot: Robot) -> Iterator[Finding]:
 ZERO_MOMENT = 1e-10
 
 
-def _zero(t: Inertia) -> float:
+def _zero_moment(t: Inertia) -> float:
+    """The magnitude at or below which a principal moment of ``t`` is zero."""
     return ZERO_MOMENT * max(abs(t.ixx), abs(t.ixy), abs(t.ixz), abs(t.iyy), abs(t.iyz), abs(t.izz))
 
 
@@ -206,7 +207,7 @@ def _verdict(
     """The printed principal moments when ``test`` holds for numpy's eigenvalues of ``t``,
     else None. Plain-float eigenvalues (principal.bounded) answer when their interval
     settles the test and prints alike; numpy only when it does not (a tensor on the edge)."""
-    zero = _zero(t)
+    zero = _zero_moment(t)
     one = _printer(zero)
     b = principal.bounded(t)
     decided = settled(b, zero) if b is not None else None
