@@ -341,9 +341,12 @@ def test_random_mimic_trees_agree_with_pinocchio_and_yourdfpy(  # type: ignore[n
     event(f"followers: {len(mimics)}, chains: {chains}")
     if chains:
         return  # pinocchio and yourdfpy do not follow a mimic of a mimic (JOINT007 says so)
-    ydf = ydf_positions(urdf, values, links, "l0")
-    for name in links:
-        np.testing.assert_allclose(ours[name], ydf[name], atol=1e-9, rtol=0, err_msg=name)
+    # yourdfpy (trimesh's scene graph) keeps the old transform for a change under ~1e-8: a joint
+    # at 4.6e-9 rad stays at zero there (pinocchio above moves it), so such cases skip that oracle
+    if all(v == 0 or abs(v) >= 1e-7 for v in values.values()):
+        ydf = ydf_positions(urdf, values, links, "l0")
+        for name in links:
+            np.testing.assert_allclose(ours[name], ydf[name], atol=1e-9, rtol=0, err_msg=name)
     if all(robot.joint(lead).type != "continuous" for lead, _, _ in mimics.values()):  # type: ignore[union-attr]
         try:
             native = pin_positions(pin, urdf, values, links, use_mimic=True)  # pinocchio's own mimic joints

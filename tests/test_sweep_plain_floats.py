@@ -129,3 +129,15 @@ def test_a_pose_past_the_float_range_moves_nothing_as_with_numpy(tmp_path: Path)
     done = cli("sweep", str(urdf))
     assert done.returncode == 0, done.stderr
     assert "positive turn moves no link" in done.stdout
+
+
+def test_a_range_too_large_to_sweep_is_said_not_a_traceback(tmp_path: Path) -> None:
+    # upper 1e308: lower + (upper - lower) * k overflows to inf, and cos(inf) raises
+    urdf = tmp_path / "huge.urdf"
+    urdf.write_text(
+        '<robot name="r"><link name="a"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1e308" effort="1" velocity="1"/></joint><link name="b"/></robot>'
+    )
+    done = cli("sweep", str(urdf))
+    assert "Traceback" not in done.stderr
+    assert "info[SWEEP003]: j is not swept: its range is too large to sweep (lower -1, upper 1e+308)" in done.stderr

@@ -220,7 +220,7 @@ def findings(sw: Sweep) -> list[Finding]:
             finding(
                 "SWEEP003",
                 f"{nr.joint.name} is not swept: {nr.why}",
-                "give the joint lower < upper limits to have its motion checked",
+                "give the joint finite lower < upper limits (in radians or metres) to have its motion checked",
                 f"joint:{nr.joint.name}",
                 nr.joint.where,
             )

@@ -90,6 +90,8 @@ def grid(j: Joint, steps: int) -> tuple[tuple[float, ...], bool] | str:
         lo, hi = float(lm.lower), float(lm.upper)
         if not hi > lo:
             return f"its range is empty (lower {lo:g}, upper {hi:g})"
+        if not math.isfinite((hi - lo) * steps):  # the grid's products below stay finite
+            return f"its range is too large to sweep (lower {lo:g}, upper {hi:g})"
     values = [lo + (hi - lo) * k / steps for k in range(steps)] + [hi]
     return tuple(values), j.type == "continuous"
 
