@@ -264,7 +264,7 @@ def test_template_override_by_file_name(tmp_path: Path) -> None:
     spec = project(tmp_path)
     overrides = tmp_path / "my_templates"
     overrides.mkdir()
-    original = (ROOT / "templates" / "robot.rviz.j2").read_text()
+    original = (ROOT / "descgen" / "templates" / "robot.rviz.j2").read_text()
     (overrides / "robot.rviz.j2").write_text(original.replace("Frame Rate: 30", "Frame Rate: 60"))
     r = cli("generate", "--templates", str(overrides), str(spec))
     assert r.returncode == 0, r.stderr
@@ -281,7 +281,7 @@ def test_broken_template_override_fails_the_xacro_check(tmp_path: Path) -> None:
     spec = project(tmp_path)
     overrides = tmp_path / "t"
     overrides.mkdir()
-    src = (ROOT / "templates" / "robot.urdf.j2").read_text()
+    src = (ROOT / "descgen" / "templates" / "robot.urdf.j2").read_text()
     assert '{% include "_ros2_control.xml.j2" %}' in src
     (overrides / "robot.urdf.j2").write_text(src.replace('{% include "_ros2_control.xml.j2" %}', ""))
     outcome = generate(spec, templates=overrides)

@@ -354,7 +354,7 @@ def test_two_files_copied_to_one_place_are_refused(tmp_path: Path) -> None:
 def test_recorded_templates_make_generate_and_check_agree(tmp_path: Path) -> None:
     make_project(tmp_path, SPEC.replace("name: mini_arm\n", "name: mini_arm\ntemplates: ../tpl\n"))
     (tmp_path / "tpl").mkdir()
-    default = Path(__file__).resolve().parents[1] / "templates" / "CMakeLists.txt.j2"
+    default = Path(__file__).resolve().parents[1] / "descgen" / "templates" / "CMakeLists.txt.j2"
     (tmp_path / "tpl" / "CMakeLists.txt.j2").write_text(default.read_text() + "# team override\n")
     assert generate(tmp_path)[0] == 0
     assert (tmp_path / "generated" / PKG / "CMakeLists.txt").read_text().endswith("# team override\n")

@@ -519,7 +519,7 @@ def test_check_refuses_a_template_that_drops_the_initial_positions(
     would start the demo at 0, so generate stops with GEN093 at the MoveIt package's Xacro."""
     templates = tmp_path / "templates"
     templates.mkdir()
-    source = (ROOT / "templates" / "robot.ros2_control.xacro.j2").read_text(encoding="utf-8")
+    source = (ROOT / "descgen" / "templates" / "robot.ros2_control.xacro.j2").read_text(encoding="utf-8")
     assert "{% set initial_from_file = true %}" in source
     (templates / "robot.ros2_control.xacro.j2").write_text(source.replace("{% set initial_from_file = true %}", ""))
     out = tmp_path / "out"
