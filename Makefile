@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 BIN := $(VENV)/bin
 SPEC ?= specs/warehouse_arm.yaml
 
-.PHONY: setup demo test lint bench clean
+.PHONY: setup system-deps demo test lint bench clean
 
 setup: $(VENV)/.installed
 
@@ -23,16 +23,24 @@ demo: setup
 	$(BIN)/descgen check $(SPEC)
 	$(BIN)/descgen simulate $(SPEC) --pose ready
 	$(BIN)/descgen report $(SPEC)
+	@echo "descgen is installed in $(VENV): run $(BIN)/descgen --help, or . $(BIN)/activate first"
 
 lint: setup
 	$(BIN)/ruff check descgen tests benchmarks scripts
 	$(BIN)/ruff format --check descgen tests benchmarks scripts
 	$(BIN)/mypy descgen
 
+# the system tools the tests use as oracles (check_urdf, tf2, Graphviz, a headless Chromium),
+# installed with apt-get where missing (sudo when not root); where that is impossible it says
+# which packages are missing and stops: the oracle tests never skip quietly
+system-deps:
+	@scripts/install-system-deps.sh
+
 # every test, slow and end-to-end ones included, on every core (pytest-xdist); tests write
-# only to their tmp_path, so workers share nothing but the read-only repository
-test: lint
-	$(BIN)/pytest -q -n auto
+# only to their tmp_path, so workers share nothing but the read-only repository. The oracles
+# are required (DESCGEN_REQUIRE_TOOLS=1): a missing one fails its tests instead of skipping them
+test: lint system-deps
+	DESCGEN_REQUIRE_TOOLS=1 $(BIN)/pytest -q -n auto --durations=10
 
 # every benchmark beside its anchor, then one table (benchmarks/summary.py) for the README;
 # about 10 minutes on 2 cores (bench_tf audits a 10-minute recording here; --minutes 30 by hand)

@@ -13,7 +13,7 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from . import __version__, cli_format, collector, report
 from . import cli_types as types
@@ -39,20 +39,25 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from .spec.files import expand_specs
 
     all_findings: list[Finding] = []
+    per_spec: list[tuple[str, list[Finding], str]] = []
     failed = False
     for path in expand_specs(args.spec):
         try:
             loaded = load_spec(path, package_paths=tuple(args.package_path or ()))
         except InputError as exc:
             all_findings.extend(exc.findings)
+            per_spec.append((str(path), list(exc.findings), ""))
             failed = True
             continue
         all_findings.extend(loaded.findings)
+        per_spec.append((str(path), list(loaded.findings), ""))
         if args.format == "text":
             sys.stderr.write(report.text(loaded.findings))
             print(cli_format.validated(path, loaded.robot))
     if args.format == "json":
         sys.stdout.write(report.as_json(all_findings))
+    elif args.format == "junit":
+        sys.stdout.write(report.junit("validate", per_spec))
     elif failed:
         sys.stderr.write(report.text(f for f in all_findings if f.severity == "error"))
     return EXIT_INPUT if failed else EXIT_OK
@@ -87,21 +92,35 @@ def _cmd_check(args: argparse.Namespace) -> int:
     from .spec.files import expand_specs
 
     worst = EXIT_OK
+    junit = args.format == "junit"
+    per_spec: list[tuple[str, list[Finding], str]] = []
     for spec in expand_specs(args.spec):
-        outcome = check(
-            Path(spec),
-            args.out,
-            args.templates,
-            package_paths=tuple(args.package_path or ()),
-            thorough=args.thorough,
-        )
-        if outcome.diff:
+        try:
+            outcome = check(
+                Path(spec),
+                args.out,
+                args.templates,
+                package_paths=tuple(args.package_path or ()),
+                thorough=args.thorough,
+            )
+        except InputError as exc:
+            if not junit:
+                raise
+            per_spec.append((str(spec), list(exc.findings), ""))
+            worst = EXIT_INPUT
+            continue
+        if junit:
+            per_spec.append((str(spec), list(outcome.findings), outcome.diff))
+        elif outcome.diff:
             sys.stdout.write(outcome.diff)
-        sys.stderr.write(report.text(outcome.findings))
+        if not junit:
+            sys.stderr.write(report.text(outcome.findings))
         if outcome.failed:
             worst = max(worst, EXIT_FAILED)
-        else:
+        elif not junit:
             print(f"{spec}: generated files are up to date and every check passed")
+    if junit:
+        sys.stdout.write(report.junit("check", per_spec))
     return worst
 
 
@@ -196,6 +215,8 @@ def _cmd_audit(args: argparse.Namespace) -> int:
         sys.stdout.write(report.as_json(found))
     elif args.format == "sarif":
         sys.stdout.write(report.sarif(found, base=str(Path.cwd())))
+    elif args.format == "junit":
+        sys.stdout.write(report.junit("audit", _by_input(args.path, found), strict=args.strict))
     else:
         sys.stderr.write(report.text(found))
         counts = ", ".join(f"{n} {k}" for k, n in summary(found).items())
@@ -203,10 +224,26 @@ def _cmd_audit(args: argparse.Namespace) -> int:
     return exit_code(found, input_error=unusable, strict=args.strict)
 
 
+def _by_input(paths: Sequence[str], found: Sequence[Finding]) -> list[tuple[str, list[Finding], str]]:
+    """Findings grouped by the file they are in: one group per input named (a clean input has
+    one too), then one per other file a finding points at (an SRDF, an included Xacro)."""
+    groups: dict[str, list[Finding]] = {p: [] for p in paths}
+    for f in found:
+        file = f.where.file.removesuffix(" (expanded)")
+        if file == "<unknown>" and paths:
+            file = paths[0]
+        groups.setdefault(file, []).append(f)
+    return [(name, fs, "") for name, fs in groups.items()]
+
+
 def _cmd_import(args: argparse.Namespace) -> int:
     from .importer.run import ImportOptions, import_description
 
     out: Path | None = args.output
+    if out is not None:
+        from .importer.run import refuse_unsafe_output
+
+        refuse_unsafe_output(out)  # a link, FIFO or device: never replaced, --force or not
     if out is not None and out.exists() and not args.force:
         raise InputError(
             [
@@ -271,17 +308,41 @@ def _cmd_frames(args: argparse.Namespace) -> int:
 
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
     from .progress import wanted
-    from .tf.bagaudit import audit_all
+    from .tf.bagaudit import audit_each
 
     bags = [Path(b) for b in args.bag]
     topics = tuple(args.topic or ())
     show = wanted(args.format == "text")
-    reps = audit_all(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
+    outcomes = audit_each(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
+    errors = [f for _, found in outcomes for f in found]
+    readable = [(bag, rep) for bag, (rep, _) in zip(args.bag, outcomes, strict=True) if rep is not None]
+    if errors and not readable:
+        raise InputError(errors)  # nothing to report: exit 2, as for one recording
+    bags_ok, reps = [b for b, _ in readable], [r for _, r in readable]
     if args.format == "json":
-        sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, reps), indent=2) + "\n")
+        doc = cli_format.tf_audit_json(bags_ok, reps) if not errors else _tf_audit_json_partial(args.bag, outcomes)
+        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
     else:
-        sys.stdout.write(cli_format.tf_audit_texts(args.bag, reps, args.target))
+        if not errors:
+            sys.stdout.write(cli_format.tf_audit_texts(bags_ok, reps, args.target))
+        else:  # several recordings, each under its name, as when all are readable
+            sys.stdout.write(
+                "".join(f"== {report.printable(b)}\n" + cli_format.tf_audit_text(r, args.target) for b, r in readable)
+            )
+    if errors:  # the readable recordings are reported above; the unreadable one is exit 2
+        raise InputError(errors)
     return EXIT_FAILED if any(rep.lookups - rep.counts["ok"] for rep in reps) else EXIT_OK
+
+
+def _tf_audit_json_partial(bags: Sequence[str], outcomes: Sequence[tuple[Any, Sequence[Finding]]]) -> dict[str, Any]:
+    """Several recordings, some unreadable: each readable one's report, and for the others the
+    input errors that kept them from one (``{"errors": [finding, ...]}``)."""
+    return {
+        "recordings": {
+            bag: rep.as_dict() if rep is not None else {"errors": [f.as_dict() for f in found]}
+            for bag, (rep, found) in zip(bags, outcomes, strict=True)
+        }
+    }
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:
@@ -476,7 +537,7 @@ def parser() -> argparse.ArgumentParser:
 
     v = sub.add_parser("validate", help="check specs (schema, units, whole-model rules); write nothing")
     v.add_argument("spec", nargs="+")
-    v.add_argument("--format", choices=("text", "json"), default="text")
+    v.add_argument("--format", choices=("text", "json", "junit"), default="text")
     spec_package_path(v)
     v.set_defaults(fn=_cmd_validate)
 
@@ -494,6 +555,12 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("spec", nargs="+")
     c.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
     c.add_argument("--templates", type=types.templates_folder, help="folder of template overrides")
+    c.add_argument(
+        "--format",
+        choices=("text", "junit"),
+        default="text",
+        help="junit: JUnit XML on stdout (a test suite per spec; the diff of stale files in its failure)",
+    )
     spec_package_path(c)
     c.add_argument(
         "--thorough",
@@ -511,7 +578,7 @@ def parser() -> argparse.ArgumentParser:
         metavar="DIR",
         help="a MoveIt config package to audit with the robot (its SRDF and ros2_controllers.yaml unless given)",
     )
-    a.add_argument("--format", choices=("text", "json", "sarif"), default="text")
+    a.add_argument("--format", choices=("text", "json", "sarif", "junit"), default="text")
     a.add_argument("--strict", action="store_true", help="warnings count as errors")
     a.add_argument(
         "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"
@@ -696,7 +763,7 @@ def _run(argv: Sequence[str] | None, ending: bool = False) -> int:
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT if exc.code else EXIT_OK
     try:
         # validate, generate and check: every object lives to the end (descgen/collector.py), and
-        # their input is bounded (a spec is at most 5 MiB); tf-audit and control keep the collector
+        # their input is bounded (a spec is at most 16 MiB); tf-audit and control keep the collector
         with collector.paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check), ending):
             code = int(args.fn(args))
         sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit

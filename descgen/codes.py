@@ -411,6 +411,16 @@ register(
       and license.""",
     ),
     C(
+        "SPEC026",
+        "duplicate-material-name",
+        "error",
+        "spec",
+        "Two entries of materials: have the same name.",
+        """urdfdom refuses a URDF whose robot-level materials are not unique ("material 'x' is not unique"),
+      so robot_state_publisher, pinocchio's collision matrix and check_urdf all fail on the generated
+      file. Remove the second entry or rename it (and the visuals that use it).""",
+    ),
+    C(
         "SPEC080",
         "variants-without-mock-default",
         "error",
@@ -656,6 +666,16 @@ register(
       Fix the path (relative to the spec), convert the file to STL, OBJ or DAE, or give the inertia explicitly.""",
     ),
     C(
+        "INER032",
+        "inertia-not-finite",
+        "error",
+        "spec",
+        "inertial from: a shape whose computed tensor overflows (inf or nan), with plausibility ranges widened.",
+        """A mass and a size at the edge of the floats (1e300 kg, 1e200 m) give moments beyond them; no
+      simulator or rule can use an infinite tensor. Give a mass and size a real part has, or the inertia
+      explicitly.""",
+    ),
+    C(
         "SRDF010",
         "group-state-unknown-pose",
         "error",
@@ -831,6 +851,16 @@ register(
         "A controllers YAML has a list or a scalar where a mapping belongs.",
         """ros2_control reads parameters from mappings; the wrong shape configures nothing or crashes
       the node. Write key: value lines indented below the key.""",
+    ),
+    C(
+        "READ044",
+        "link-out-of-named-folder",
+        "error",
+        "read",
+        "A file of a folder you named (--moveit-config, a template folder) is a symbolic link out of it.",
+        """Only files inside the folders you name are read (docs/security.md): a link to
+      /proc/self/environ or ~/.ssh would put their text into findings or generated files. Copy the
+      file into the folder instead of linking to it.""",
     ),
     C(
         "MOVEIT020",
@@ -1083,6 +1113,16 @@ register(
       override is reported at the template instead of a traceback. Fix the template.""",
     ),
     C(
+        "GEN065",
+        "template-not-a-file-in-folder",
+        "error",
+        "generate",
+        "A template override is a symbolic link out of its folder, not a regular file, or too large.",
+        """A template is read like any other input: a link to /proc/self/environ would render the
+      environment (CI tokens) into the package, and a FIFO would block. Put the template itself in the
+      folder, as a regular file of at most 1 MiB.""",
+    ),
+    C(
         "GEN040",
         "symlink-in-package",
         "error",
@@ -1250,6 +1290,16 @@ register(
         "control",
         "The evidence folder cannot be created.",
         """The run's evidence would be lost. Choose another --out.""",
+    ),
+    C(
+        "CTRL035",
+        "evidence-path-not-plain",
+        "error",
+        "control",
+        "The evidence folder, or a file control writes in it (control_run/, a plot), is a symbolic link, "
+        "FIFO or device.",
+        """Evidence is written only as regular files inside the folder you named; a link would send it
+      elsewhere and a FIFO would block. Nothing is written: remove the entry or choose another --out.""",
     ),
 )
 
@@ -1520,6 +1570,17 @@ register(
         """Nothing moves, so nothing can sag or tip. Use --base floor for a mobile base, or simulate a
       description that has joints.""",
     ),
+    C(
+        "SIM017",
+        "sim-too-large",
+        "error",
+        "simulate",
+        "The robot is too large to simulate: more than 2,000 links, more than 500 degrees of freedom, or "
+        "more mass-matrix work over the run than the bound; nothing is compiled (exit 2).",
+        """MuJoCo's compiler and the servos' pseudo-inverse grow with the cube of the degrees of freedom, and
+      each step factorises the mass matrix: a 10,000-link chain would run for hours. The bounds keep a run
+      within about 15 s; simulate fewer --seconds, or a smaller description.""",
+    ),
 )
 
 # --------------------------------------------------------------------------- added with issue 12: descgen import
@@ -1579,6 +1640,24 @@ register(
         "The -o spec file exists already.",
         """A spec is reviewed and edited by hand; import never replaces one unless told to. Choose another
       file, or pass --force.""",
+    ),
+    C(
+        "IMP033",
+        "import-output-not-regular",
+        "error",
+        "import",
+        "The -o path is a symbolic link, FIFO, device or folder.",
+        """import writes a spec as a regular file; --force replaces only a regular file, never a link (it
+      would write through or replace it) nor a device or FIFO (run as root, replacing /dev/null breaks the
+      machine). Name a file path.""",
+    ),
+    C(
+        "IMP034",
+        "import-output-unwritable",
+        "error",
+        "import",
+        "The -o spec file cannot be written (a file in the way of its folder, no permission, a read-only disk).",
+        """Nothing is written. Choose another -o file.""",
     ),
     C(
         "IMP008",
@@ -1828,6 +1907,29 @@ register(
       so its link is checked without it and contacts with it are missed. Give --package-path or fix the
       filename.""",
     ),
+    C(
+        "SWEEP007",
+        "sweep-too-large",
+        "error",
+        "sweep",
+        "The robot is too large to sweep: joints x links x grid steps is more than the sweep's bound "
+        "(500,000 link poses); nothing is swept (exit 2).",
+        """Every joint is moved through every grid step and every link's pose is computed there, so the work
+      grows with the joints times the links: a 10,000-link chain would take hours. The bound keeps a sweep
+      within about 20 s; sweep with fewer --steps, or a smaller description.""",
+    ),
+    C(
+        "SWEEP008",
+        "sweep-collisions-too-many",
+        "warning",
+        "sweep",
+        "The self-collisions of the sweep were not checked: more pair tests (pairs x grid steps) than the "
+        "sweep's bound (2,000,000), or more collision shapes or a deeper tree than pinocchio is given "
+        "(20,000 pairs of shapes, 1,000 joints deep). The directions are still reported.",
+        """pinocchio keeps ~40 KB per pair of collision shapes, and its URDF parser overflows the stack on a
+      tree thousands of joints deep (a crash, no message). Sweep with fewer --steps, disable pairs that
+      cannot collide in the SRDF, or give fewer collision shapes.""",
+    ),
 )
 
 # --------------------------------------------------------------------------- launch substitutions in a controllers YAML
@@ -1910,5 +2012,15 @@ register(
         """The spec's controller joint names must be the robot's joints, and the literal $(var ...) is
       none; guessing a value would import a robot that differs from the one launched. Pass
       --launch-arg NAME:=VALUE, or write the value into the file. Exit 2, nothing written.""",
+    ),
+    C(
+        "IMP035",
+        "import-too-large",
+        "error",
+        "import",
+        "The description has more links than descgen answers for (10,000), or its spec would be larger than "
+        "validate reads (16 MiB, 2,000,000 YAML nodes); the import stops.",
+        """A spec that validate refuses is no import: every command that reads it would stop at the size
+      bound, and the round trip could not prove it. Exit 2, nothing written; split the description.""",
     ),
 )

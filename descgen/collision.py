@@ -47,6 +47,12 @@ if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
 ALGORITHM = "descgen-collision-2"  # 2: mimic followers follow their leaders
+# What pinocchio is given (load_scene refuses more, GEN070; the sweep says SWEEP008): it keeps
+# ~40 KB per pair of collision shapes (requests, results), 1.25 GB for 250 one-shape links, and
+# its URDF parser recurses down the tree, a stack overflow (exit 139, no message) past ~3,500
+# joints deep with an 8 MB stack.
+MAX_SHAPE_PAIRS = 20_000  # ~0.8 GB: 200 collision shapes
+MAX_DEPTH = 1_000  # joints from the root to the deepest link
 COMPUTED_REASONS = ("Adjacent", "Default", "Always", "Never")
 _CACHE_LINE = re.compile(r"collision matrix input-sha256=([0-9a-f]{64})")
 
@@ -171,8 +177,47 @@ def _refuse(message: str, hint: str, robot: Robot) -> InputError:
     return InputError([Finding("GEN070", "error", message, hint, "semantic:collision_matrix", where)])
 
 
+def too_large(robot: Robot) -> str:
+    """Why pinocchio may not be given ``robot`` (beyond :data:`MAX_SHAPE_PAIRS` or
+    :data:`MAX_DEPTH`), or "". Linear in the model."""
+    shapes = sum(len(lk.collisions) for lk in robot.links)
+    if shapes * (shapes - 1) // 2 > MAX_SHAPE_PAIRS:
+        return (
+            f"{shapes:,} collision shapes make {shapes * (shapes - 1) // 2:,} pairs, more than the "
+            f"{MAX_SHAPE_PAIRS:,} pinocchio is given (~40 KB of memory each)"
+        )
+    parent = {j.child: j.parent for j in robot.joints if j.child is not None and j.parent is not None}
+    depth: dict[str, int] = {}
+    for link in parent:
+        path: list[str] = []
+        n = link
+        while n in parent and n not in depth and len(path) <= len(parent):  # a cycle ends the walk
+            path.append(n)
+            n = parent[n]
+        d = depth.get(n, 0)
+        for m in reversed(path):
+            d += 1
+            depth[m] = d
+    deepest = max(depth.values(), default=0)
+    if deepest > MAX_DEPTH:
+        return (
+            f"the tree is {deepest:,} joints deep, more than the {MAX_DEPTH:,} pinocchio is given "
+            "(its URDF parser recurses down the tree and overflows the stack)"
+        )
+    return ""
+
+
 def load_scene(robot: Robot, urdf: str, meshes: Mapping[str, bytes], package: str, padding: float) -> _Scene:
-    """pinocchio's model and every geometry pair between two different links."""
+    """pinocchio's model and every geometry pair between two different links. GEN070 for a
+    robot past pinocchio's bounds (:func:`too_large`)."""
+    why = too_large(robot)
+    if why:
+        raise _refuse(
+            f"the collision check is not run: {why}",
+            "give fewer collision shapes (simpler collision geometry), or leave semantic.collision_matrix out "
+            "and list the disabled pairs yourself",
+            robot,
+        )
     try:
         import pinocchio as pin
     except ImportError:

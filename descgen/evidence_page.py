@@ -126,8 +126,21 @@ def _capture(fn: Callable[[], Any]) -> tuple[str, str]:
     return out.getvalue(), err.getvalue()
 
 
+# Everything the page quotes from its input (the spec's file name, names, messages, what the
+# recorded control run says) is Markdown text, a code span or a fenced block that it cannot leave
+# (descgen/render/formatting.py: mdtext, mdspan, mdfence, mddest); tests/test_markdown_escaping.py
+# reads the page with a CommonMark parser. Imported when the page is built (descgen.render is
+# not needed to take a recorded page as current).
+
+
+def _md() -> Any:
+    from .render import formatting
+
+    return formatting
+
+
 def _block(text: str, lang: str = "") -> list[str]:
-    return [f"```{lang}", *text.rstrip("\n").splitlines(), "```", ""]
+    return _md().mdfence(text, lang)  # type: ignore[no-any-return]
 
 
 def _exists(package: Path, rel: str) -> bool:
@@ -137,8 +150,8 @@ def _exists(package: Path, rel: str) -> bool:
 def _link(package: Path, rel: str, label: str | None = None) -> str:
     """A link relative to evidence/README.md; a missing file is said so, never linked blindly."""
     target = rel[len("evidence/") :] if rel.startswith("evidence/") else f"../{rel}"
-    shown = label or rel
-    return f"[{shown}]({target})" if _exists(package, rel) else f"{shown} (missing)"
+    shown = _md().mdtext(label or rel)
+    return f"[{shown}]({_md().mddest(target)})" if _exists(package, rel) else f"{shown} (missing)"
 
 
 def _verdict(ok: bool, text: str) -> str:
@@ -187,7 +200,7 @@ def _validation(spec: Path, shown: str) -> tuple[list[str], Any]:
     loaded = load_spec(spec, display=shown)
     text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
     ok = not any(f.severity == "error" for f in loaded.findings)
-    lines = ["## 2. Validation", "", f"`descgen validate {shown}` prints:", "", *_block(text, "text")]
+    lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
     lines += [_verdict(ok, "the spec is valid"), ""]
     return lines, loaded.robot
 
@@ -226,7 +239,7 @@ def _timestamps(robot: Any) -> list[str]:
         text = cli_format.tf_audit_text(rep, TARGET_FRAME)
     c = rep.counts
     failed = {k for k in ("disconnected", "stale", "future") if c[k]}
-    planted = ", ".join(f"`{f}` in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items())
+    planted = ", ".join(f"{_md().mdspan(f)} in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items())
     lines = [
         "## 5. Timestamp failures",
         "",
@@ -261,22 +274,26 @@ def _control(package: Path) -> tuple[list[str], list[str]]:
     traces += [_verdict(bool(verdict) and active, "every controller reached active; no claim was refused"), ""]
     plots = sorted(p.name for p in ev.glob("*.png")) if ev.is_dir() else []
     run = verdict.get("run", {})
+    trajectory = run.get("trajectory", "?")
     dvm = [
         "## 7. Desired versus measured",
         "",
         f"{_link(package, 'evidence/desired_vs_measured.csv')} and {_link(package, 'evidence/verdict.json')}, "
-        f"from `descgen control SPEC --trajectory {run.get('trajectory', '?')}` "
-        f"(plant {run.get('plant', {}).get('kind', '?')}).",
+        f"from {_md().mdspan(f'descgen control SPEC --trajectory {trajectory}')} "
+        f"(plant {_md().mdtext(run.get('plant', {}).get('kind', '?'))}).",
         "",
     ]
-    dvm += [f"![{p}]({p})" for p in plots] + [""]
+    dvm += [f"![{_md().mdtext(p)}]({_md().mddest(p)})" for p in plots] + [""]
     echo = verdict.get("state_echoes_command")
     dvm += [
-        _verdict(bool(verdict.get("ok")), f"tracking within tolerance; `state_echoes_command: {str(echo).lower()}`"),
+        _verdict(
+            bool(verdict.get("ok")),
+            f"tracking within tolerance; {_md().mdspan(f'state_echoes_command: {str(echo).lower()}')}",
+        ),
         "",
     ]
     if echo:
-        dvm += [f"> {verdict.get('note', '')}", ""]
+        dvm += [f"> {_md().mdtext(verdict.get('note', ''))}", ""]
     return traces, dvm
 
 
@@ -297,15 +314,16 @@ def _transcript(
         "What `make demo` prints on a fresh clone after installing (the package is committed and up to date, "
         "so generate rewrites nothing):",
         "",
-        "```text",
     ]
+    shell: list[str] = []
     for cmd, out in steps:
-        lines += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
+        shell += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
     # MuJoCo's digits and its presence vary by machine: check leaves this part out (and skips the run)
-    lines += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
+    shell += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
     images = [*(pose_images.image_rel(kp.name) for kp in robot.known_poses), pose_images.SIDECAR]
     wrote = [f"wrote {rel}" for rel in images]
-    lines += [f"$ descgen report {shown}", *wrote, f"wrote {PAGE}", "```", ""]
+    shell += [f"$ descgen report {shown}", *wrote, f"wrote {PAGE}"]
+    lines += _block("\n".join(shell), "text")
     lines += [_verdict("every check passed" in check_out[0], "validate, generate and check succeed"), ""]
     return lines
 
@@ -338,7 +356,7 @@ def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
         "|---|---|---|",
     ]
     for c in caught:
-        by = f"{c.by.code}: {report.printable(c.by.message)}".replace("|", "\\|") if c.by else "**MISSED**"
+        by = _md().mdtext(f"{c.by.code}: {report.printable(c.by.message)}") if c.by else "**MISSED**"
         lines.append(f"| {c.fault.story} | {'yes' if c.planted else 'not plantable'} | {by} |")
     results = plant_all(robot)
     applicable = [r for r in results if r.applicable]
@@ -369,9 +387,9 @@ def build(
     validation, _ = _validation(spec, shown)
     traces, dvm = _control(package)
     parts = [
-        f"# Evidence for {robot.name}",
+        f"# Evidence for {_md().mdtext(robot.name)}",
         "",
-        f"Written by `descgen report {shown}`; `descgen check` verifies it is current. "
+        f"Written by {_md().mdspan(f'descgen report {shown}')}; `descgen check` verifies it is current. "
         "Each section links the committed files it summarises and ends with a verdict.",
         "",
         *_model(files, robot, package, proofs),

@@ -30,6 +30,7 @@ import errno
 import functools
 import hashlib
 import os
+import posixpath
 import re
 import secrets
 import shutil
@@ -534,6 +535,9 @@ def _build(new: Path, package_dir: Path, files: Mapping[str, str | bytes], out: 
         shutil.copymode(package_dir, new)
         _copy_tree(package_dir, new, {*out.written, *out.removed})
     for rel in out.written:
+        # a package path is made of names (the robot's, a mesh's): never one that leaves the package
+        if posixpath.isabs(rel) or ".." in rel.split("/") or "\x00" in rel:
+            raise ValueError(f"package path {rel!r} leaves the package")
         _write(new / rel, files[rel])
     _fsync(new)
 

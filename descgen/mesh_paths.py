@@ -28,7 +28,7 @@ from typing import Any
 
 from .findings import Finding, Where
 from .model import Collision, Link, Mesh, MeshState, Robot, Visual
-from .packages import find_package
+from .packages import find_package, manifest_name
 from .record import record
 from .safeio import MIB
 
@@ -151,8 +151,9 @@ def mesh_status(
 ) -> tuple[dict[str, MeshState], dict[str, Path]]:
     """ok | missing | escapes | unresolved for every mesh filename of an audited description,
     and the file each found one is (for rules that read meshes). A relative name may not leave
-    the description's package; ``package://`` is searched in ``package_paths``, then beside
-    the description's folder (the package it is in, and its siblings)."""
+    the description's package; ``package://`` is searched in ``package_paths``, then answered by
+    the description's own package (the nearest folder above it holding a package.xml, by the
+    name that file gives), and nowhere else: not the folders beside it (docs/security.md)."""
     return resolve_names(_mesh_names(robot), description, package_paths)
 
 
@@ -164,13 +165,23 @@ def resolve_names(
     status: dict[str, MeshState] = {}
     files: dict[str, Path] = {}
     base = description.resolve().parent
-    search = [*package_paths, base.parent, base]
+    search = list(package_paths)
     root = package_root(base)  # once per description, not per mesh
     packages: dict[str, Path | None] = {}
+    own: list[str | None] = []  # the own package's name, read once, only when a name needs it
     folders: dict[str, str] = {}
     for name in names:
         if name in status:
             continue
+        uri = split_package_uri(name)
+        if uri is not None and uri[0] not in packages and PACKAGE_NAME.fullmatch(uri[0]):
+            # --package-path first, as ROS's overlays (the first found wins), then the own package
+            found = find_package(uri[0], search)
+            if found is None:
+                if not own:
+                    own.append(manifest_name(root / "package.xml"))
+                found = root if own[0] == uri[0] else None
+            packages[uri[0]] = found.resolve() if found is not None else None
         r = resolve(name, base, root, search, packages, folders)
         status[name] = r.state
         if r.state == "ok" and r.path is not None:
@@ -230,10 +241,15 @@ def moveit_package_name(robot: Robot) -> str:
     return f"{name.removesuffix('_description')}_moveit_config"
 
 
-def own_mesh_path(written: str) -> str:
+def own_mesh_path(written: str, folder: str = "/spec") -> str:
     """Where a mesh named relative to the spec is copied in the package: ``meshes/`` plus the
-    path as written (without a leading ``meshes/``, which would be doubled)."""
-    rel = posixpath.normpath(written)
+    path as written (without a leading ``meshes/``, which would be doubled), normalised as a
+    path inside the spec's ``folder``: ``../specs/base.stl`` written in specs/ is ``meshes/base.stl``,
+    so a name never puts a copy outside ``meshes/`` (ValueError for one that would)."""
+    inside = posixpath.normpath(posixpath.join(folder, written))
+    rel = posixpath.relpath(inside, folder)
+    if rel == "." or rel == ".." or rel.startswith("../"):
+        raise ValueError(f"mesh path {written!r} leaves its folder")
     return rel if rel.startswith(f"{MESH_FOLDER}/") else f"{MESH_FOLDER}/{rel}"
 
 
@@ -307,7 +323,11 @@ def resolve_spec(
             problems.append(bad)
             continue
         assert r.path is not None
-        dest = own_mesh_path(name) if uri is None else None
+        try:
+            dest = own_mesh_path(name, base.as_posix()) if uri is None else None
+        except ValueError:  # through a link inside the folder and back up past it: no copy could be named
+            problems.append(_refusal(name, Resolved("escapes"), at, bool(search)) or _clash(name, name, name, at))
+            continue
         if dest is not None:
             earlier = copies.setdefault(dest, (r.path, name))
             if earlier[0] != r.path:

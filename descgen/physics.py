@@ -119,6 +119,10 @@ def max_abs_harmonic(a: float, b: float, lo: float, hi: float) -> float:
     candidates = [lo, hi]
     if hi - lo >= 2 * math.pi:
         return math.hypot(a, b)
+    if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(lo) and math.isfinite(hi)):
+        # a load at a pose beyond the floats (two offsets of 1e308: inf - inf = nan): no
+        # stationary point to find; hypot bounds what is finite and is nan for the rest
+        return math.hypot(a, b)
     base = math.atan2(b, a)
     k = math.floor((lo - base) / math.pi)
     while base + k * math.pi <= hi:

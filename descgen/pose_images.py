@@ -134,8 +134,11 @@ def record(robot: Robot) -> str:
 
 
 def embeds(robot: Robot) -> list[str]:
-    """The page's Markdown for the images (relative to evidence/README.md)."""
-    return [f"![{kp.name}](poses/{kp.name}.png)" for kp in robot.known_poses]
+    """The page's Markdown for the images (relative to evidence/README.md); a pose name is an
+    identifier (the schema's Name), escaped all the same as Markdown text and a link target."""
+    from .render.formatting import mddest, mdtext
+
+    return [f"![{mdtext(kp.name)}]({mddest(f'poses/{kp.name}.png')})" for kp in robot.known_poses]
 
 
 # -- drawing ------------------------------------------------------------------------------

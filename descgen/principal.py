@@ -57,6 +57,13 @@ def moments(t: Inertia) -> Moments:
     return _moments(_key(t))
 
 
+def _finite(t: Inertia) -> bool:
+    return all(math.isfinite(v) for v in (t.ixx, t.ixy, t.ixz, t.iyy, t.iyz, t.izz))
+
+
+_NAN3 = (math.nan, math.nan, math.nan)
+
+
 @functools.lru_cache(maxsize=16384)
 def _moments(key: tuple[float, ...]) -> Moments:
     t = Inertia(*key[:6])
@@ -65,6 +72,8 @@ def _moments(key: tuple[float, ...]) -> Moments:
         return a, b, c
     if _zero(t):
         return t.ixx, t.iyy, t.izz
+    if not _finite(t):  # an overflowing full tensor (inf, nan): LAPACK raises LinAlgError
+        return _NAN3
     import numpy as np  # only for full tensors
 
     e = np.linalg.eigvalsh(np.array(t.matrix()))
@@ -93,6 +102,8 @@ def _axes(key: tuple[float, ...]) -> tuple[Moments, tuple[tuple[float, float, fl
         return (diag[order[0]], diag[order[1]], diag[order[2]]), tuple(_AXES[k] for k in order)
     if _zero(t):
         return (t.ixx, t.iyy, t.izz), _AXES
+    if not _finite(t):
+        return _NAN3, _AXES
     import numpy as np
 
     e, v = np.linalg.eigh(np.array(t.matrix()))

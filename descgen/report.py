@@ -136,3 +136,60 @@ def _physical(where: Where, base: str | None) -> dict[str, object]:
             region["startColumn"] = where.col
         location["region"] = region
     return location
+
+
+# XML 1.0 has no way to write these (not even as character references): a value from an audited
+# file holding one would make the whole report unreadable, so it is written as an escape
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff\ud800-\udfff]")
+
+
+def _xml_text(value: object) -> str:
+    return _NOT_XML.sub(lambda m: f"\\x{ord(m.group()):02x}", str(value))
+
+
+def junit(command: str, suites: Iterable[tuple[str, Iterable[Finding], str]], strict: bool = False) -> str:
+    """JUnit XML, as CI servers (Jenkins, GitLab, Azure) show test results: one ``<testsuite>``
+    per input (a spec or a description) with a ``<testcase>`` for the command on that input and
+    one per finding. A finding fails its case when it makes the command fail (an error; a
+    warning with ``strict``); others pass and keep their text in ``<system-out>``, so the
+    failures a server counts are exactly what set the exit code. ``suites``: (name, findings,
+    text shown with the command's own case, e.g. the diff of stale files, whose findings fail)."""
+    from xml.etree import ElementTree as ET
+
+    failing = {"error", "warning"} if strict else {"error"}
+    root = ET.Element("testsuites", name=f"descgen {command}")
+    total = failed_total = 0
+    for name, findings, shown in suites:
+        fs = list(findings)
+        suite = ET.SubElement(root, "testsuite", name=_xml_text(name))
+        own = ET.SubElement(suite, "testcase", name=command, classname=f"descgen.{command}", file=_xml_text(name))
+        if shown:
+            ET.SubElement(own, "system-out").text = _xml_text(shown)
+        failed = 0
+        for f in fs:
+            case = ET.SubElement(
+                suite,
+                "testcase",
+                name=_xml_text(f"{f.code} {f.subject}".strip()),
+                classname=f"descgen.{command}.{f.code}",
+                file=_xml_text(f.where.file),
+                line=str(f.where.line),
+            )
+            body = _xml_text(text([f]))
+            if f.severity in failing:
+                failure = ET.SubElement(case, "failure", type=f.severity, message=_xml_text(f.message))
+                failure.text = body
+                failed += 1
+            else:
+                ET.SubElement(case, "system-out").text = body
+        suite.set("tests", str(1 + len(fs)))
+        suite.set("failures", str(failed))
+        suite.set("errors", "0")
+        suite.set("skipped", "0")
+        total += 1 + len(fs)
+        failed_total += failed
+    root.set("tests", str(total))
+    root.set("failures", str(failed_total))
+    root.set("errors", "0")
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"

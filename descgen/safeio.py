@@ -156,3 +156,101 @@ def read_head(path: Path, n: int) -> bytes:
         return b""
     finally:
         os.close(fd)
+
+
+# --- folders the user named, and the files written for them -------------------------------------
+
+
+def _within(path: str, folder: str) -> bool:
+    """Whether the real path ``path`` is ``folder`` or below it (both real, absolute)."""
+    return path == folder or path.startswith(folder.rstrip("/") + "/")
+
+
+def inside(path: Path, folder: Path) -> bool:
+    """Whether ``path``, every symbolic link resolved, lies inside ``folder`` (also resolved):
+    a link out of a folder the user named is not in it, a link within it is. False for a path
+    that cannot be resolved (a NUL byte, a link loop)."""
+    try:
+        return _within(os.path.realpath(path), os.path.realpath(folder))
+    except (OSError, ValueError):
+        return False
+
+
+def refuse_outside(path: Path, folder: Path, what: str, *, code: str, display: str | None = None) -> None:
+    """InputError ``code`` when ``path`` (links resolved) leaves ``folder``: a file of a folder
+    the user named is read only when it is really in that folder (docs/security.md)."""
+    if inside(path, folder):
+        return
+    shown = display if display is not None else str(path)
+    raise _error(
+        code,
+        f"the {what} is a symbolic link out of {folder}; only files inside it are read",
+        f"copy the file into {folder} instead of linking to it",
+        shown,
+    )
+
+
+def read_in_folder(
+    path: Path,
+    folder: Path,
+    what: str,
+    limit: int = MAX_DESCRIPTION_BYTES,
+    *,
+    code: str = "READ044",
+    display: str | None = None,
+    codes: Codes = READ_CODES,
+) -> bytes:
+    """:func:`read_bounded` for a file of a folder the user named (``--moveit-config``, a
+    template folder): refused (``code``) when a link takes it out of ``folder``. The real path
+    is what is opened, so the file checked is the file read."""
+    shown = display if display is not None else str(path)
+    refuse_outside(path, folder, what, code=code, display=shown)
+    try:
+        real = Path(os.path.realpath(path))
+    except (OSError, ValueError) as exc:
+        raise _unreadable(exc, codes, shown) from None
+    return read_bounded(real, what, limit, display=shown, codes=codes)
+
+
+def output_kind(path: Path) -> str | None:
+    """What stands at an output path that must not be replaced: "a symbolic link", "a FIFO
+    (named pipe)", "a directory", ... ; None when nothing is there or a regular file is (the
+    one kind ``--force`` may replace). ``lstat``: a link is never followed."""
+    try:
+        st = os.lstat(path)
+    except (OSError, ValueError):  # nothing there (or no way there): the write itself reports why
+        return None
+    if stat.S_ISLNK(st.st_mode):
+        return "a symbolic link"
+    if stat.S_ISREG(st.st_mode):
+        return None
+    return _kind(st.st_mode)
+
+
+def safe_file_name(name: str, suffix: str = "") -> str:
+    """A file name for a joint, link or robot name (``name`` + ``suffix``) that is one plain
+    component: a name of letters, digits, ``_``, ``-`` and ``.`` (not starting with ``.`` or
+    ``-``) is kept as it is; any other (``a/../../x``, ``..``, a non-ASCII or over-long one) is
+    written as its safe characters and a hash of the whole name, so two names never share a file
+    and no name becomes a path."""
+    import hashlib
+    import re
+
+    if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.\-]{0,99}", name) and ".." not in name:
+        return name + suffix
+    plain = re.sub(r"[^A-Za-z0-9_\-]+", "_", name)[:60].strip("_-") or "name"
+    digest = hashlib.sha256(name.encode("utf-8", "surrogatepass")).hexdigest()[:12]
+    return f"{plain}~{digest}{suffix}"
+
+
+def output_file(folder: Path, name: str) -> Path:
+    """``folder / name`` for a file descgen writes, checked after resolution: ``name`` is one
+    component (no ``/``, not ``.`` or ``..``) and the result, links resolved, is in ``folder``.
+    ValueError otherwise: a caller passes names through :func:`safe_file_name` first, so this is
+    the last line, never the user's message."""
+    if not name or "/" in name or "\x00" in name or name in (".", ".."):
+        raise ValueError(f"not a plain file name: {name!r}")
+    target = folder / name
+    if not inside(target.parent, folder) or os.path.islink(target):
+        raise ValueError(f"{target} is not inside {folder}")
+    return target

@@ -255,14 +255,22 @@ def parse(text: str) -> pint.Quantity[Any]:
 def to_si(value: object, kind_name: str) -> float:
     """Convert one written value to the SI unit of ``kind_name`` (see :func:`_to_si`)."""
     if isinstance(value, str | int | float) and not isinstance(value, bool):
-        return _to_si_cached(value, kind_name)
+        si = _to_si_cached(value, kind_name)
+        if isinstance(si, tuple):  # a refusal, remembered as its words: raised anew each time
+            raise QuantityError(*si)
+        return si
     return _to_si(value, kind_name)
 
 
 @functools.lru_cache(maxsize=4096)
-def _to_si_cached(value: str | int | float, kind_name: str) -> float:
-    # pint parses slowly (~0.5 ms); specs repeat the same texts ("0", "100 mm") a lot
-    return _to_si(value, kind_name)
+def _to_si_cached(value: str | int | float, kind_name: str) -> float | tuple[str, str, str]:
+    # pint parses slowly (~0.5 ms); specs repeat the same texts ("0", "100 mm") a lot, and a
+    # bad text repeated (a YAML alias, a copied line) is refused as often: the refusal is
+    # remembered too (code, message, hint), so 10,000 repeats cost one parse
+    try:
+        return _to_si(value, kind_name)
+    except QuantityError as exc:
+        return (exc.code, exc.message, exc.hint)
 
 
 def _to_si(value: object, kind_name: str) -> float:

@@ -12,14 +12,19 @@ command never shows it as a traceback or a hang:
   items not started are dropped, running workers are terminated, and the interruption goes
   on (exit 130, or 143 for SIGTERM), leaving no worker behind. The signals wait while workers
   are forked (one handled inside a fork would be lost, or leave a worker unrecorded), and a
-  worker dies on SIGTERM, not through the handler it was forked with.
+  worker dies on SIGTERM, not through the handler it was forked with;
+- SIGKILL of this process (the OOM killer, ``kill -9``, a CI runner's hard timeout), which runs
+  no clean-up: each worker gets the kernel's parent-death signal (Linux ``PR_SET_PDEATHSIG``,
+  else a thread watching the parent's pid), so none is left running, blocked on its pipe.
 """
 
 from __future__ import annotations
 
 import os
 import signal
+import sys
 import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TypeVar
@@ -53,7 +58,7 @@ def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results:
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start)
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start, initargs=(os.getpid(),))
     futures = {}
     try:
         with _sigterm_raises():
@@ -88,11 +93,42 @@ def _cpus() -> int:
         return os.cpu_count() or 1
 
 
-def _worker_start() -> None:
+def _worker_start(parent: int) -> None:
     """In each worker: SIGTERM ends it at once (the parent's terminate()), not through the
-    parent's handler it was forked with, and the signals held while it was forked are let through."""
+    parent's handler it was forked with, and the signals held while it was forked are let through.
+    And it dies with its parent: a parent killed with SIGKILL (the OOM killer, ``kill -9``, a CI
+    runner's hard timeout) runs no clean-up, and its workers would wait on their pipe forever."""
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _die_with(parent)
     interruptions.let_through()
+
+
+PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+
+
+def _die_with(parent: int) -> None:
+    """SIGKILL this process when ``parent`` dies: the kernel's parent-death signal on Linux
+    (prctl through ctypes), else a thread that watches the parent's pid. A parent already gone
+    before that was set up (re-parented: getppid changed) ends the worker here."""
+    armed = False
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            armed = libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0) == 0
+        except (OSError, AttributeError):
+            armed = False
+    if os.getppid() != parent:
+        os._exit(1)
+    if not armed:
+
+        def watch() -> None:
+            while os.getppid() == parent:
+                time.sleep(0.5)
+            os._exit(1)
+
+        threading.Thread(target=watch, name="descgen-parent-watch", daemon=True).start()
 
 
 @contextmanager

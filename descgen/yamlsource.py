@@ -20,8 +20,34 @@ from .findings import Finding, InputError, Where
 from .record import record
 from .safeio import Codes, read_bounded
 
-MAX_BYTES = 5 * 1024 * 1024  # a robot spec is kilobytes; 5 MB is already absurd
-MAX_NODES = 200_000  # after alias expansion
+# Sized for the largest robots descgen answers for: 10,000 links (and their joints). A link
+# and its joint written out in full (visual, collision, inertial, sources, limits) are ~1 KB
+# and ~100 YAML nodes, so such a spec is ~10 MB and ~1 M nodes (benchmarks/synthetic.py's
+# plainer chain: 5 MB, 560,000 nodes).
+MAX_BYTES = 16 * 1024 * 1024
+# Nodes after alias expansion: the memory of a document (~250 bytes a node, built; ~0.5 GB).
+MAX_NODES = 2_000_000
+# Nodes that aliases repeat (an alias counts the whole collection it names, before it is built).
+# This bound stops a document whose aliases repeat a node exponentially often (a "billion
+# laughs": 30 lines that expand to 10^9 nodes) at its first large alias, in milliseconds; 10,000
+# aliases of a 10-node geometry are 100,000.
+MAX_REPEATED = 500_000
+
+
+def nodes_hint() -> str:
+    return (
+        f"descgen reads at most {MAX_NODES:,} YAML nodes, aliases expanded (a 10,000-link spec has about "
+        "1,000,000), so that a document cannot exhaust memory; split the file"
+    )
+
+
+def repeated_hint() -> str:
+    return (
+        f"aliases may repeat at most {MAX_REPEATED:,} YAML nodes: the bound stops aliases that repeat a node "
+        "exponentially often (a 'billion laughs') from exhausting memory and time; write out what the aliases repeat"
+    )
+
+
 MAX_DEPTH = 64
 DEPTH_HINT = (
     f"descgen reads YAML nested at most {MAX_DEPTH} levels deep; no spec, controllers or MoveIt file needs more"
@@ -196,6 +222,10 @@ class _Builder:
         self.key_marks: dict[Path_, tuple[int, int]] = {}
         self.value_marks: dict[Path_, tuple[int, int]] = {}
         self.count = 0
+        self.repeated = 0  # nodes that aliases repeat (MAX_REPEATED)
+        self.built: set[int] = set()  # collections built once (by id: the composed tree keeps them alive)
+        self.sizes: dict[int, int] = {}
+        self.aliasing = False  # building a repeated collection
         # (tag, text) -> value of the scalars whose value is immutable and depends only on
         # them: a spec writes "0" thousands of times, and the constructor's path is long
         self.scalars: dict[tuple[str, str], Any] = {}
@@ -205,8 +235,8 @@ class _Builder:
         if self.count > MAX_NODES:
             raise _fail(
                 self.file,
-                f"more than {MAX_NODES} YAML nodes after expanding aliases",
-                "remove the alias expansion (a YAML 'billion laughs' document?)",
+                f"more than {MAX_NODES:,} YAML nodes after expanding aliases",
+                nodes_hint(),
                 node.start_mark.line + 1,
                 node.start_mark.column + 1,
                 code="YAML003",
@@ -220,11 +250,33 @@ class _Builder:
                 node.start_mark.column + 1,
             )
         self.value_marks.setdefault(path, (node.start_mark.line + 1, node.start_mark.column + 1))
+        if type(node) is _SCALAR:
+            return self.construct(node)
+        alias = False
+        if id(node) not in self.built:
+            self.built.add(id(node))
+        elif not self.aliasing:  # an alias of a collection: counted whole before it is built
+            self.repeated += self._size(node)
+            if self.repeated > MAX_REPEATED:
+                raise _fail(
+                    self.file,
+                    f"more than {MAX_REPEATED:,} YAML nodes repeated through aliases (this collection is one "
+                    "they repeat)",
+                    repeated_hint(),
+                    node.start_mark.line + 1,
+                    node.start_mark.column + 1,
+                    code="YAML003",
+                )
+            alias = self.aliasing = True  # the aliases inside it are counted in its size
         if isinstance(node, yaml.MappingNode):
-            return self._mapping(node, path, depth)
-        if isinstance(node, yaml.SequenceNode):
-            return self._sequence(node, path, depth)
-        return self.construct(node)
+            out: Any = self._mapping(node, path, depth)
+        elif isinstance(node, yaml.SequenceNode):
+            out = self._sequence(node, path, depth)
+        else:
+            out = self.construct(node)
+        if alias:
+            self.aliasing = False
+        return out
 
     # A plain text scalar (most of a spec) is taken by its parent without calling build: what
     # build does with it (count it, record its mark, return its text) while no limit is near
@@ -273,6 +325,18 @@ class _Builder:
             else:
                 out[key] = self.build(value_node, kpath, depth + 1)
         return out
+
+    def _size(self, node: yaml.Node) -> int:
+        """The nodes that building ``node`` counts (a mapping's keys are not), each distinct
+        collection sized once: linear in the composed document however often aliases repeat.
+        Only called for a collection built once already, so its height is within MAX_DEPTH."""
+        if type(node) is _SCALAR:
+            return 1
+        known = self.sizes.get(id(node))
+        if known is None:
+            items = [v for _, v in node.value] if isinstance(node, yaml.MappingNode) else node.value
+            known = self.sizes[id(node)] = 1 + sum(self._size(v) for v in items)
+        return known
 
     def _key(self, key_node: yaml.Node) -> str:
         """A mapping key other than plain text: a merge key and a collection are refused, a

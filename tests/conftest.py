@@ -1,8 +1,10 @@
 from __future__ import annotations
 
+import atexit
 import os
 import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -10,9 +12,17 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
 
-# tests write only to their tmp_path: no pint definition cache in the user's cache folder
-# (descgen.cache_dir.CACHE_ENV; "" switches the cache off, subprocesses inherit it)
-os.environ.setdefault("DESCGEN_CACHE_DIR", "")
+# The suite reads nothing of the user's environment; each test sets what it needs. Caches off
+# (descgen.cache_dir.CACHE_ENV; "" switches them off, subprocesses inherit it), whatever the user
+# set; not in CI (progress bars and CI-only behaviour are chosen by the tests that check them);
+# XDG folders (platformdirs, matplotlib's config) in a folder of the session's own.
+os.environ["DESCGEN_CACHE_DIR"] = ""
+for _name in ("CI", "MPLCONFIGDIR", "PYDANTIC_DISABLE_PLUGINS", "ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"):
+    os.environ.pop(_name, None)
+_SESSION_HOME = tempfile.mkdtemp(prefix="descgen-tests-xdg-")
+atexit.register(shutil.rmtree, _SESSION_HOME, True)
+for _name in ("XDG_CACHE_HOME", "XDG_CONFIG_HOME", "XDG_DATA_HOME", "XDG_STATE_HOME"):
+    os.environ[_name] = os.path.join(_SESSION_HOME, _name.lower())
 
 
 def require_tool(name: str) -> str:
@@ -37,6 +47,33 @@ def pin():  # type: ignore[no-untyped-def]
             pytest.fail("pinocchio is required (DESCGEN_REQUIRE_TOOLS=1) but cannot be imported")
         pytest.skip("pinocchio not installed")
     return pinocchio
+
+
+# --- where every test must run (CI, `make test`), a skip is a failure --------------------------
+
+REQUIRED = os.environ.get("DESCGEN_REQUIRE_TOOLS") == "1"
+
+
+def _as_failure(report: pytest.TestReport | pytest.CollectReport) -> None:
+    reason = report.longrepr[2] if isinstance(report.longrepr, tuple) else str(report.longrepr)
+    report.outcome = "failed"
+    report.longrepr = f"skipped where every test must run (DESCGEN_REQUIRE_TOOLS=1): {reason}"
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]):  # type: ignore[no-untyped-def]
+    outcome = yield
+    report = outcome.get_result()
+    if REQUIRED and report.skipped and not hasattr(report, "wasxfail"):
+        _as_failure(report)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_make_collect_report(collector: pytest.Collector):  # type: ignore[no-untyped-def]
+    outcome = yield
+    report = outcome.get_result()
+    if REQUIRED and report.skipped:  # a module-level importorskip or skip(allow_module_level=True)
+        _as_failure(report)
 
 
 @pytest.fixture

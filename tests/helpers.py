@@ -164,3 +164,54 @@ def on_a_terminal(args: list[str], env: dict[str, str], cwd: Path = ROOT) -> str
     proc.communicate(timeout=60)
     os.close(leader)
     return b"".join(chunks).decode("utf-8", "replace")
+
+
+def user_project(tmp_path: Path, name: str = "robot_ws") -> Path:
+    """A user's project folder away from the repository: the example's specs/ and the
+    committed generated/, as a team's repository holds them."""
+    import shutil
+
+    project = tmp_path / name
+    project.mkdir()
+    shutil.copytree(ROOT / "specs", project / "specs")
+    shutil.copytree(ROOT / "generated", project / "generated")
+    return project
+
+
+def set_at(data: object, path: tuple[object, ...], value: object) -> None:
+    """``data[path[0]][path[1]]... = value`` in a loaded YAML document."""
+    for key in path[:-1]:
+        data = data[key]  # type: ignore[index]
+    data[path[-1]] = value  # type: ignore[index]
+
+
+def get_at(data: object, path: tuple[object, ...]) -> object:
+    for key in path:
+        data = data[key]  # type: ignore[index]
+    return data
+
+
+def view_until_url_then_ctrl_c(path: Path) -> tuple[int, str]:
+    """``descgen view PATH --port 0`` started, waited for until it prints its URL (a readiness
+    signal, not a sleep), then stopped with Ctrl-C: (exit code, stderr)."""
+    import time
+
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "descgen", "view", str(path), "--port", "0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=ROOT,
+    )
+    try:
+        line = ""
+        deadline = time.monotonic() + 60
+        while "descgen view:" not in line and time.monotonic() < deadline:
+            line = proc.stdout.readline()  # type: ignore[union-attr]
+        assert "http://127.0.0.1:" in line, line
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    return proc.returncode, err

@@ -125,14 +125,28 @@ def _audit_in_background(paths: list[str], start_new_session: bool = False) -> s
     )
 
 
+def _wait_for_workers(proc: subprocess.Popen[bytes], timeout: float = 120) -> None:
+    """Until the audit's workers exist: its signal handlers are installed before they are forked
+    (descgen/workers.py), so a signal sent now meets them, however loaded the machine is."""
+    import time
+
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        assert proc.poll() is None, "the audit ended before its workers started"
+        children = subprocess.run(["pgrep", "-P", str(proc.pid)], capture_output=True, text=True).stdout.split()
+        if children:
+            return
+        time.sleep(0.05)
+    raise AssertionError("no worker started")
+
+
 @pytest.mark.e2e
 def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
     import signal
-    import time
 
     # its own process group, SIGINT not ignored: Ctrl-C reaches the workers too, as in a terminal
     proc = _audit_in_background(_chains(tmp_path), start_new_session=True)
-    time.sleep(1.5)
+    _wait_for_workers(proc)
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err[-500:]
@@ -190,7 +204,7 @@ def test_sigterm_to_the_parent_alone_leaves_no_worker(tmp_path: Path) -> None:
     folder = tmp_path / "sigterm-probe"
     folder.mkdir()
     proc = _audit_in_background(_chains(folder))
-    time.sleep(1.5)
+    _wait_for_workers(proc)
     proc.terminate()  # SIGTERM to the parent only, as Popen.terminate() and CI runners send it
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 143, err[-500:]

@@ -27,7 +27,7 @@ from lxml import etree
 from descgen.findings import InputError
 from descgen.generate import plan
 
-from .helpers import EXAMPLE_TEXT, ROOT
+from .helpers import EXAMPLE_TEXT, ROOT, get_at, set_at
 
 EXAMPLE = yaml.safe_load(EXAMPLE_TEXT)
 
@@ -65,18 +65,6 @@ def _string_leaves(node: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...
 
 
 LEAVES = _string_leaves(EXAMPLE)
-
-
-def _set(data: Any, path: tuple[Any, ...], value: str) -> None:
-    for key in path[:-1]:
-        data = data[key]
-    data[path[-1]] = value
-
-
-def _get(data: Any, path: tuple[Any, ...]) -> Any:
-    for key in path:
-        data = data[key]
-    return data
 
 
 def _outputs_parse(files: dict[str, str]) -> dict[str, list[str]]:
@@ -137,7 +125,7 @@ def test_a_hostile_string_is_refused_or_stays_data(
     tmp_path: Path, leaf: tuple[Any, ...], payload: str, append: bool
 ) -> None:
     data = yaml.safe_load(EXAMPLE_TEXT)
-    _set(data, leaf, (_get(data, leaf) + payload) if append else payload)
+    set_at(data, leaf, (get_at(data, leaf) + payload) if append else payload)
     files = _build(tmp_path, data)
     if files is None:
         return

@@ -482,6 +482,7 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("generate", "--package-path", ["generate", NOSPEC, "--package-path", "{afile}"], "' is not a folder"),
     ("check", "--package-path", ["check", NOSPEC, "--package-path", "{tmp}/none"], "' does not exist"),
     ("check", "--thorough", ["check", NOSPEC, "--thorough=1"], "argument --thorough: ignored explicit argument '1'"),
+    ("check", "--format", ["check", NOSPEC, "--format", "json"], "argument --format: invalid choice: 'json'"),
     ("sweep", "path", ["sweep", "{tmp}/none.urdf"], "error[READ001]"),
     ("sweep", "--state", ["sweep", SPEC, "--state", "nope"], "error[SWEEP004]: --state 'nope'"),
     ("sweep", "--steps", ["sweep", NOSPEC, "--steps", "0"], "argument --steps: 0 is not between 1 and 3600"),

@@ -337,7 +337,7 @@ def test_spec_file_name_stays_a_comment(tmp_path: Path, clean: dict[str, str]) -
         assert body(text) == body(clean[rel]), rel  # only the header differs
         assert text.count("\n") == clean[rel].count("\n"), rel
     launch = files["launch/display.launch.py"]
-    assert [type(n).__name__ for n in ast.parse(launch).body] == ["Expr"] + ["ImportFrom"] * 5 + ["FunctionDef"]
+    assert [type(n).__name__ for n in ast.parse(launch).body] == ["Expr"] + ["ImportFrom"] * 6 + ["FunctionDef"]
 
 
 def test_spec_file_name_end_to_end(tmp_path: Path) -> None:

@@ -21,7 +21,7 @@ from descgen.spec import load_spec
 from descgen.view import load, markers, presets, sliders
 
 from .conftest import ROOT, require_tool
-from .helpers import cli
+from .helpers import cli, view_until_url_then_ctrl_c
 
 SPEC = ROOT / "specs" / "warehouse_arm.yaml"
 
@@ -175,22 +175,5 @@ def test_in_chromium_a_slider_moves_the_robot_and_a_known_pose_meets_its_measure
 
 @pytest.mark.e2e
 def test_view_prints_its_url_and_stops_cleanly_on_ctrl_c() -> None:
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "descgen", "view", str(SPEC), "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        cwd=ROOT,
-    )
-    try:
-        line = ""
-        deadline = time.monotonic() + 60
-        while "descgen view:" not in line and time.monotonic() < deadline:
-            line = proc.stdout.readline()  # type: ignore[union-attr]
-        assert "http://127.0.0.1:" in line, line
-        proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=30)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-    assert proc.returncode == 0 and "stopped" in err and "Traceback" not in err, err
+    code, err = view_until_url_then_ctrl_c(SPEC)
+    assert code == 0 and "stopped" in err and "Traceback" not in err, err

@@ -9,6 +9,7 @@ or a spec's own semantics and controllers, win.
 from __future__ import annotations
 
 import dataclasses
+import os
 from pathlib import Path
 
 from ..findings import Finding, Where
@@ -16,7 +17,7 @@ from ..model import Robot, Ros2Control
 from ..readers.controllers import read_controllers_file
 from ..readers.moveit_config import config_folder, find_srdf, read_moveit_config
 from ..readers.srdf import read_srdf_text
-from ..safeio import read_bounded
+from ..safeio import read_in_folder
 from .registry import RULES, run
 
 
@@ -30,13 +31,13 @@ def attach(
     found: list[Finding] = []
     srdf = find_srdf(folder, robot.name) if read_srdf else None
     if srdf is not None:
-        semantic, name, more = read_srdf_text(read_bounded(srdf, "SRDF"), str(srdf))
+        semantic, name, more = read_srdf_text(read_in_folder(srdf, path, "SRDF"), str(srdf))
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name))
         config = dataclasses.replace(config, srdf_file=str(srdf))
     yaml_file = folder / "ros2_controllers.yaml"
-    if read_controllers and yaml_file.exists():
-        text = read_bounded(yaml_file, "controllers YAML").decode("utf-8", "replace")
+    if read_controllers and os.path.lexists(yaml_file):
+        text = read_in_folder(yaml_file, path, "controllers YAML").decode("utf-8", "replace")
         cf = read_controllers_file(text, str(yaml_file))
         found += cf.found
         rc = robot.ros2_control or Ros2Control("", where=Where(str(yaml_file)))

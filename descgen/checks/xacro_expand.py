@@ -48,7 +48,11 @@ def expand_packages(
         _KIND,
         {
             "packages": {
-                name: {rel: sha256(text) for rel, text in sorted(files.items()) if _read_by_xacro(rel)}
+                name: {
+                    rel: sha256(text)
+                    for rel, text in sorted(files.items())
+                    if _read_by_xacro(rel) or (name, rel) == (package, xacro_path)
+                }
                 for name, files in sorted(packages.items())
             },
             "top": [package, xacro_path],
@@ -64,7 +68,7 @@ def expand_packages(
         root = Path(tmp)
         for name, files in packages.items():
             for rel, text in files.items():
-                if _read_by_xacro(rel):
+                if _read_by_xacro(rel) or (name, rel) == (package, xacro_path):  # the top file: any name (an SRDF)
                     target = root / name / rel
                     target.parent.mkdir(parents=True, exist_ok=True)
                     target.write_text(text, encoding="utf-8")
@@ -220,8 +224,17 @@ def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim
         for k, val in v.params:
             etree.SubElement(hw, "param", name=k).text = val
     if variant == "gazebo":
-        plugin = etree.SubElement(etree.SubElement(doc, "gazebo"), "plugin", filename=sim[0], name=sim[1])
+        # the sim plugin follows the model's blocks (the ros2_control Xacro writes it after them),
+        # not the end of the robot: pass-through elements come after the include
+        gazebo = etree.Element("gazebo")
+        plugin = etree.SubElement(gazebo, "plugin", filename=sim[0], name=sim[1])
         etree.SubElement(plugin, "parameters").text = f"{folder}/config/ros2_controllers.yaml"
+        names = {b.name for b in rc.hardware_blocks()}
+        blocks = [e for e in doc.findall("ros2_control") if e.get("name", "") in names]
+        if blocks:
+            blocks[-1].addnext(gazebo)
+        else:
+            doc.append(gazebo)
     return doc
 
 

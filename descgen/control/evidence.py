@@ -11,6 +11,7 @@ from typing import Any
 
 from ..findings import Finding, InputError, Where
 from ..model import Robot
+from ..safeio import output_file, output_kind, safe_file_name
 from .verdict import Outcome
 
 
@@ -25,6 +26,83 @@ def evidence_folder(package: Path, plant: str, faults: object) -> Path:
     return Path(tempfile.mkdtemp(prefix="descgen-control-"))
 
 
+FILES = (
+    "lifecycle.jsonl",
+    "lifecycle.md",
+    "interfaces.md",
+    "desired_vs_measured.csv",
+    "control_run",
+    "verdict.json",
+)
+
+
+def plot_name(joint: str) -> str:
+    """The plot of a joint: its name as one plain file name (safeio.safe_file_name), so a joint
+    named ``../../x`` or ``wrist/pitch`` never becomes a path."""
+    return safe_file_name(joint, ".png")
+
+
+def plot_names(out: Outcome) -> list[str]:
+    return [plot_name(joint) for joint in out.tracking]
+
+
+def _refuse_unsafe(folder: Path, names: list[str]) -> None:
+    """CTRL035 (exit 2) when the evidence folder is a link or not a folder, or an entry control
+    writes in it is a link, FIFO, device or socket (control_run/ must be a real folder): the
+    evidence is written only as regular files inside the folder named, and nothing is written
+    when any is refused."""
+    bad: list[tuple[Path, str]] = []
+    kind = output_kind(folder)  # a regular file in the way is mkdir's CTRL034, below
+    if kind is not None and kind != "a directory":
+        bad.append((folder, kind))
+    elif folder.is_dir():
+        for name in names:
+            entry = folder / name
+            kind = output_kind(entry)
+            if name == "control_run":
+                if kind == "a directory":
+                    continue
+                if kind is None and entry.exists():
+                    kind = "a regular file"
+            if kind is not None:
+                bad.append((entry, kind))
+    if bad:
+        raise InputError(
+            [
+                Finding(
+                    "CTRL035",
+                    "error",
+                    f"{'the evidence folder' if path == folder else path.name + ' in the evidence folder'} is {kind}, "
+                    f"not {'a folder' if path == folder or path.name == 'control_run' else 'a regular file'}: "
+                    "control writes its evidence only inside the folder named, and wrote nothing",
+                    "remove it, or choose another --out",
+                    "option",
+                    Where(str(path)),
+                )
+                for path, kind in bad
+            ]
+        )
+
+
+def _write_plain(path: Path, data: bytes) -> None:
+    """Write a regular file, never through a link that appeared since the check (O_NOFOLLOW),
+    never blocking on a FIFO (O_NONBLOCK: no reader is an error)."""
+    import os
+    import stat
+
+    flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0)
+    fd = os.open(path, flags, 0o644)
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise OSError(f"{path} is not a regular file")
+        os.set_blocking(fd, True)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view) :]
+    finally:
+        os.close(fd)
+
+
 def write_evidence(
     out: Outcome, folder: Path, robot: Robot, plots: bool = True, package: Path | None = None
 ) -> list[str]:
@@ -33,6 +111,7 @@ def write_evidence(
     ``package``: the package the run loaded; verdict.json then records the hash of the run's
     inputs and of the files written, so ``check`` can take them without running again
     (evidence_check.reuse_record). verdict.json is written last, when every file it vouches for is."""
+    _refuse_unsafe(folder, [*FILES, *plot_names(out)])  # before anything is written
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:  # a file in the way, no permission
@@ -48,11 +127,13 @@ def write_evidence(
                 )
             ]
         ) from None
+    from ..render.formatting import mdfence, mdtext
+
     cm = out.cm
     written = []
 
     def put(name: str, text: str) -> None:
-        (folder / name).write_text(text, encoding="utf-8")
+        _write_plain(output_file(folder, name), text.encode("utf-8"))
         written.append(name)
 
     put("lifecycle.jsonl", "".join(json.dumps(e, sort_keys=True) + "\n" for e in cm.trace.events))
@@ -65,19 +146,18 @@ def write_evidence(
     for e in cm.trace.events:
         who = e.get("name") or e.get("controller") or e.get("joint", "")
         detail = ", ".join(f"{k}={v}" for k, v in e.items() if k not in ("t", "event", "name", "controller", "kind"))
-        lines.append(f"| {e['t']:.2f} | {e['event']} | {who} | {detail} |")
+        # names come from the spec: escaped so that none becomes HTML, a link or a new cell
+        lines.append(f"| {e['t']:.2f} | {mdtext(e['event'])} | {mdtext(who)} | {mdtext(detail)} |")
     put("lifecycle.md", "\n".join(lines) + "\n")
     cmds = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.commands]
     states = [f"{j.name}/{i}" for j in cm.hardware.joints for i in j.states]
-    text = [
-        "# Interfaces and controllers (as `ros2 control list_hardware_interfaces` / `list_controllers`)",
-        "",
-        "```",
-        "command interfaces",
-    ]
-    text += [f"\t{k} [available] [{'claimed' if k in cm.resources.owner else 'unclaimed'}]" for k in cmds]
-    text += ["state interfaces"] + [f"\t{k}" for k in states] + ["```", "", "```"]
-    text += [f"{n:<26} {c.type:<55} {c.state}" for n, c in cm.controllers.items()] + ["```", ""]
+    listing = ["command interfaces"]
+    listing += [f"\t{k} [available] [{'claimed' if k in cm.resources.owner else 'unclaimed'}]" for k in cmds]
+    listing += ["state interfaces"] + [f"\t{k}" for k in states]
+    controllers = [f"{n:<26} {c.type:<55} {c.state}" for n, c in cm.controllers.items()]
+    text = ["# Interfaces and controllers (as `ros2 control list_hardware_interfaces` / `list_controllers`)", ""]
+    # fenced by more backticks than any name holds: a name cannot close the block
+    text += mdfence("\n".join(listing)) + mdfence("\n".join(controllers))
     put("interfaces.md", "\n".join(text))
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -118,8 +198,10 @@ def _plots(out: Outcome, folder: Path) -> list[str]:
         ax.set_title(f"{joint}: " + ("state echoes the command (mock)" if out.echo else "simulated plant"))
         ax.legend(fontsize=7)
         fig.tight_layout()
-        name = f"{joint}.png"
-        fig.savefig(folder / name, dpi=80)
+        name = plot_name(joint)
+        buf = io.BytesIO()
+        fig.savefig(buf, dpi=80, format="png")
+        _write_plain(output_file(folder, name), buf.getvalue())
         plt.close(fig)
         names.append(name)
     return names

@@ -34,6 +34,7 @@ from ..findings import Finding, InputError, Where
 from ..model import Robot
 from ..report import printable
 from ..safeio import MAX_DESCRIPTION_BYTES, read_bounded
+from .evidence import plot_name, plot_names
 from .system import FAULT_KINDS, Plant
 
 RECORD_KEY = "run"
@@ -116,7 +117,7 @@ def _reusable(folder: Path, package: Path, robot: Robot, committed: dict[str, An
     tracking = committed.get("tracking")
     if not isinstance(reuse, dict) or not isinstance(tracking, dict):
         return False
-    if sorted(p.name for p in folder.glob("*.png")) != sorted(f"{joint}.png" for joint in tracking):
+    if sorted(p.name for p in folder.glob("*.png")) != sorted(plot_name(joint) for joint in tracking):
         return False  # a missing plot, or one of a joint the run does not track: the full check says which
     try:
         key, content = _input_key(package, robot, record), _content(folder, committed)
@@ -199,7 +200,7 @@ def _rerun(
         path = _project(package) / path
     out = run(package, robot, read_trajectory(path, robot), record["duration_s"], plant)
     written = write_evidence(out, into, robot, plots=False)
-    return written, [f"{joint}.png" for joint in out.tracking]  # the names evidence._plots gives
+    return written, plot_names(out)  # the names evidence._plots gives
 
 
 class _Stale:

@@ -218,6 +218,7 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     root = parse_xml(data, shown)
     located = element_sources(root, sources) if sources is not None else {}
     robot, _ = read_urdf_text(data, shown, sources)
+    _refuse_too_large(robot, shown)
     robot = dataclasses.replace(
         robot, materials=_inline_materials(root, robot, shown), links=_no_empty_materials(robot)
     )
@@ -278,6 +279,7 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     if named is not None:
         data_ = with_package_name(data_, named)
     text = dump(data_, shown, opts.units)
+    _refuse_too_large(robot, shown, text)
     structured = bool(structure.parts or structure.sensors)
     return Imported(
         text,
@@ -290,6 +292,37 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
         spec_name=opts.spec_name,
         variants=hv,
     )
+
+
+# The largest description import takes (IMP035): what descgen answers for. Its spec must also fit
+# what validate reads (yamlsource.MAX_BYTES, MAX_NODES), else every command would refuse it.
+MAX_LINKS = 10_000
+
+
+def _refuse_too_large(robot: m.Robot, shown: str, text: str | None = None) -> None:
+    """IMP035 (exit 2, nothing written) for a description past :data:`MAX_LINKS`, or spec
+    ``text`` larger than validate reads."""
+    from .. import yamlsource
+
+    why = ""
+    if len(robot.links) > MAX_LINKS:
+        why = f"{len(robot.links):,} links, more than the {MAX_LINKS:,} descgen imports"
+    elif text is not None and len(text.encode("utf-8")) > yamlsource.MAX_BYTES:
+        size = len(text.encode("utf-8"))
+        why = f"its spec would be {size:,} bytes, more than the {yamlsource.MAX_BYTES:,} validate reads"
+    if why:
+        raise InputError(
+            [
+                _finding(
+                    "IMP035",
+                    "error",
+                    f"the description is too large to import: {why}",
+                    "split the description into smaller robots; nothing was written",
+                    "import",
+                    Where(shown, 1, 1),
+                )
+            ]
+        )
 
 
 def _with_variants(ctl: control.Imported, hv: Variants, where: Where) -> control.Imported:
@@ -522,6 +555,20 @@ def _proved(imported: Imported) -> Outcome:
         others = imported.variants.others if imported.variants is not None else None
         imported.differences = prove(imported.spec_text, imported.robot, imported.spec_name, imported.control, others)
     except InputError as exc:
+        if any(f.code == "YAML003" for f in exc.findings):  # the spec's size, not the description's defect
+            bound = next(f for f in exc.findings if f.code == "YAML003")
+            raise InputError(
+                [
+                    _finding(
+                        "IMP035",
+                        "error",
+                        f"the description is too large to import: its spec has {bound.message}",
+                        "split the description into smaller robots; nothing was written",
+                        "import",
+                        Where(imported.spec_name),
+                    )
+                ]
+            ) from None
         invalid = [
             dataclasses.replace(
                 f,
@@ -546,16 +593,57 @@ def _unstructured(n: int, where: Where) -> Finding:
     )
 
 
+def refuse_unsafe_output(path: Path) -> None:
+    """IMP033 (exit 2) when ``-o`` names a symbolic link, FIFO, device, socket or folder:
+    import writes a spec as a regular file, and ``--force`` replaces only a regular file. Run
+    as root, replacing a device (``-o /dev/null``) would break the machine; replacing a link
+    would not write where it points, and writing through it would write where nobody asked."""
+    from ..safeio import output_kind
+
+    kind = output_kind(path)
+    if kind is not None:
+        raise InputError(
+            [
+                _finding(
+                    "IMP033",
+                    "error",
+                    f"-o names {kind}, not a regular file; import writes a spec only as a regular file "
+                    "and never replaces anything else (--force included)",
+                    "name a new file, or a regular file with --force",
+                    "option",
+                    Where(str(path)),
+                )
+            ]
+        )
+
+
 def write_spec(path: Path, text: str) -> None:
-    """Write the spec whole or not at all: a temporary file beside it, then a rename."""
+    """Write the spec whole or not at all: a temporary file beside it, then a rename. What the
+    rename replaces is checked first (only a regular file, never a link, FIFO or device)."""
     import os
     import tempfile
 
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    refuse_unsafe_output(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    except OSError as exc:  # a file in the way of the folder, no permission, a read-only disk
+        raise InputError(
+            [
+                _finding(
+                    "IMP034",
+                    "error",
+                    f"cannot write the spec there: {exc.strerror or exc}",
+                    "choose another -o file",
+                    "option",
+                    Where(str(path)),
+                )
+            ]
+        ) from None
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
+        refuse_unsafe_output(path)  # swapped in while the spec was written
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

@@ -77,6 +77,7 @@ def check(
     _initial_positions(p, robot)
     if description is not None:
         _mock_start(p, robot, description)
+        _srdf(p, robot, description)
     for rel in (".setup_assistant", "config/moveit.rviz"):
         p.yaml(rel)
     for rel, text in files.items():
@@ -256,6 +257,36 @@ def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> No
                 p.fail(
                     "GEN093", rel, f"the mock hardware starts {name} at {e.text!r}, the initial state says {value!r}"
                 )
+
+
+def _srdf(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> None:
+    """GEN090: config/<robot>.srdf as the builder loads it (expanded by xacro) is the
+    description's SRDF: the same body when it holds nothing xacro acts on, else its sandboxed
+    expansion compared as data (a ``$`` is written escaped for xacro: moveit/render.py)."""
+    from ..checks.xacro_expand import expand_packages
+    from ..render import header
+    from ..xmlcompare import first_difference, parse
+
+    rel, source = f"config/{robot.name}.srdf", f"srdf/{robot.name}.srdf"
+    if rel not in p.files or source not in description:
+        return
+    ours, theirs = header.read(p.files[rel]), header.read(description[source])
+    if ours is None or theirs is None:
+        return  # a file without its header is the package check's finding
+    if ours.body == theirs.body and "$" not in ours.body and "xacro" not in ours.body:
+        return  # nothing for xacro to evaluate: the builder gets these very bytes
+    moveit = moveit_package_name(robot)
+    try:
+        xml, _ = expand_packages({moveit: p.files}, moveit, rel, {})
+        diff = first_difference(parse(xml), parse(description[source]))
+    except InputError as exc:
+        p.fail("GEN090", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
+        return
+    except etree.XMLSyntaxError as exc:
+        p.fail("GEN092", rel, f"does not parse: {exc}")
+        return
+    if diff:
+        p.fail("GEN090", rel, f"expanded by xacro (as MoveItConfigsBuilder loads it) differs from {source} at {diff}")
 
 
 def _package_xml(p: _Proof, robot: m.Robot) -> None:

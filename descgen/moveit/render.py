@@ -5,7 +5,10 @@ The layout is the MoveIt Setup Assistant's on jazzy, so that
 loads it (moveit_configs_builder.py); docs/moveit_config.md gives each file's upstream source.
 The SRDF and ros2_controllers.yaml are the description package's, byte for byte below their
 headers: the builder reads the SRDF from this package, and demo.launch.py starts
-ros2_control_node with this package's config/ros2_controllers.yaml.
+ros2_control_node with this package's config/ros2_controllers.yaml. One exception: the builder
+expands the SRDF with xacro, so a ``$`` in it (a disabled pair's reason) is written as xacro's
+``${'$'}`` here (render.formatting.xacro_document), and xacro gives back the description's SRDF
+(moveit/proof.py proves it).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from typing import Any
 from .. import model as m
 from ..render import _render, environment, header
 from ..render.context import package_name
+from ..render.formatting import xacro_document
 from . import derive
 
 # launch/<name>.launch.py -> the moveit_configs_utils.launches function it returns (launches.py, jazzy)
@@ -175,7 +179,8 @@ def render(
             continue
         stamp = header.read(description_files[source])
         assert stamp is not None  # every rendered file has its header
-        out[path] = header.add(path, stamp.body, spec_display, digest)
+        body = xacro_document(stamp.body) if path.endswith(".srdf") else stamp.body
+        out[path] = header.add(path, body, spec_display, digest)
     return dict(sorted(out.items()))
 
 

@@ -15,6 +15,7 @@ controllers, kinematics_parameters.yaml and kdl_kinematics_parameters.yaml for k
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,7 @@ from ..moveit_model import (
     MoveItController,
     TypeProblem,
 )
-from ..safeio import read_bounded
+from ..safeio import read_in_folder, refuse_outside
 from ..yamlsource import MAX_BYTES, Document, loads
 
 FILES = (
@@ -176,9 +177,9 @@ class _File:
         return tuple(value)
 
 
-def _load(path: Path) -> _File:
+def _load(path: Path, root: Path) -> _File:
     shown = str(path)
-    raw = read_bounded(path, "MoveIt config YAML", MAX_BYTES, display=shown)
+    raw = read_in_folder(path, root, "MoveIt config YAML", MAX_BYTES, display=shown)
     text = raw.decode("utf-8-sig", "replace")
     try:
         doc = loads(text, shown)
@@ -214,9 +215,12 @@ def config_folder(path: Path) -> Path:
 
 
 def find_srdf(folder: Path, robot_name: str) -> Path | None:
-    """The SRDF MoveItConfigsBuilder would take: ``<robot>.srdf``, else the only ``*.srdf``."""
+    """The SRDF MoveItConfigsBuilder would take: ``<robot>.srdf``, else the only ``*.srdf``.
+    The robot's name (an audited URDF's, anyone's text) is a file name only when it is one plain
+    component: ``../../x`` never becomes a path out of the folder."""
+    plain = robot_name not in ("", ".", "..") and "/" not in robot_name and "\x00" not in robot_name
     named = folder / f"{robot_name}.srdf"
-    if named.is_file():
+    if plain and named.is_file():
         return named
     found = sorted(p for p in folder.glob("*.srdf") if p.is_file())
     return found[0] if len(found) == 1 else None
@@ -239,7 +243,8 @@ def read_moveit_config(path: Path) -> MoveItConfig:
                 )
             ]
         )
-    present = {name: folder / name for name in FILES if (folder / name).exists()}
+    refuse_outside(folder, path, "config folder", code="READ044", display=shown)  # config/ a link out
+    present = {name: folder / name for name in FILES if os.path.lexists(folder / name)}
     if not present:
         raise InputError(
             [
@@ -257,19 +262,19 @@ def read_moveit_config(path: Path) -> MoveItConfig:
     config = MoveItConfig(shown, Where(shown))
     fields: dict[str, Any] = {}
     if "joint_limits.yaml" in present:
-        f = _load(present["joint_limits.yaml"])
+        f = _load(present["joint_limits.yaml"], path)
         fields |= _joint_limits(f)
         problems += f.problems
     if "moveit_controllers.yaml" in present:
-        f = _load(present["moveit_controllers.yaml"])
+        f = _load(present["moveit_controllers.yaml"], path)
         fields |= _controllers(f)
         problems += f.problems
     if "kinematics.yaml" in present:
-        f = _load(present["kinematics.yaml"])
+        f = _load(present["kinematics.yaml"], path)
         fields |= {"kinematics_file": f.doc.file, "kinematics": _kinematics(f)}
         problems += f.problems
     if "pilz_cartesian_limits.yaml" in present:
-        f = _load(present["pilz_cartesian_limits.yaml"])
+        f = _load(present["pilz_cartesian_limits.yaml"], path)
         block = f.mapping(f.doc.data, ("cartesian_limits",))
         for key in _PILZ_DOUBLES:
             if block is not None:
@@ -277,7 +282,7 @@ def read_moveit_config(path: Path) -> MoveItConfig:
         fields |= {"pilz_cartesian_limits_file": f.doc.file}
         problems += f.problems
     if "initial_positions.yaml" in present:
-        f = _load(present["initial_positions.yaml"])
+        f = _load(present["initial_positions.yaml"], path)
         fields |= {"initial_positions_file": f.doc.file, "initial_positions": _initial(f)}
         problems += f.problems
     return MoveItConfig(**{**config.__dict__, **fields, "type_problems": tuple(problems)})

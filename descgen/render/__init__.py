@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import os
 from collections.abc import Collection
 from importlib import resources
 from pathlib import Path
@@ -17,6 +18,7 @@ from ..cache_dir import cache_folder
 from ..findings import Finding, InputError, Where
 from ..mesh_paths import MESH_FOLDER, own_meshes
 from ..model import Robot
+from ..safeio import MIB, Codes, read_in_folder
 from . import context, escaping, header
 from .escaping import TextEscaping, escape_text
 from .formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
@@ -60,6 +62,42 @@ class _SandboxedEnvironment(ImmutableSandboxedEnvironment):
     escape_text = staticmethod(escape_text)
 
 
+MAX_TEMPLATE_BYTES = 1 * MIB  # descgen's largest template is a few kB
+_TEMPLATE_CODES = Codes(unreadable="GEN065", not_regular="GEN065", too_large="GEN065")
+
+
+class FolderLoader(jinja2.BaseLoader):
+    """Templates of a folder that is input (a spec's ``templates:``, ``--templates``), read like
+    any other input (docs/security.md): a template must be a regular file inside the folder, links
+    resolved, of at most 1 MiB, else GEN065 at the template (exit 2), before a byte is rendered. A
+    link to /proc/self/environ would otherwise render the environment into the package, and a FIFO
+    block. A name that is not in the folder falls through to the defaults."""
+
+    def __init__(self, folder: Path) -> None:
+        self.folder = folder
+
+    def get_source(self, environment: jinja2.Environment, template: str) -> tuple[str, str, Any]:
+        from jinja2.loaders import split_template_path  # refuses ".." and absolute names
+
+        path = self.folder.joinpath(*split_template_path(template))
+        if not os.path.lexists(path):
+            raise jinja2.TemplateNotFound(template)
+        data = read_in_folder(path, self.folder, "template", MAX_TEMPLATE_BYTES, code="GEN065", codes=_TEMPLATE_CODES)
+        text = data.decode("utf-8", "replace")
+        seen = _mtime(path)
+        return text, str(path), lambda: _mtime(path) == seen
+
+    def list_templates(self) -> list[str]:
+        return sorted(p.name for p in self.folder.iterdir() if p.is_file() and not p.is_symlink())
+
+
+def _mtime(path: Path) -> float | None:
+    try:
+        return os.stat(path).st_mtime
+    except (OSError, ValueError):
+        return None
+
+
 def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja2.Environment:
     """Templates from ``templates`` (a team's overrides, by file name) before the defaults.
 
@@ -68,7 +106,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     Python, no mutation); a folder named with --templates is the user's own code."""
     loaders: list[jinja2.BaseLoader] = []
     if templates is not None:
-        loaders.append(jinja2.FileSystemLoader(str(templates)))
+        loaders.append(FolderLoader(templates))
     loaders.append(jinja2.FileSystemLoader(str(default_templates())))
     make = _SandboxedEnvironment if sandboxed else _Environment
     env = make(
@@ -117,9 +155,10 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
 
 
 def install_dirs(robot: Robot) -> list[str]:
-    """Every folder the package has (CMake installs them all to share/<package>): those of the
-    generated files, and ``meshes`` when the robot has meshes of its own."""
-    folders = {path.split("/")[0] for path, _, _ in outputs(robot) if "/" in path}
+    """The folders CMake installs to share/<package>: those of the generated files, and
+    ``meshes`` when the robot has meshes of its own. ``evidence`` is for reviewers of the
+    source tree, not for a robot at run time, so it is not installed."""
+    folders = {path.split("/")[0] for path, _, _ in outputs(robot) if "/" in path} - {"evidence"}
     return sorted(folders | ({MESH_FOLDER} if own_meshes(robot) else set()))
 
 

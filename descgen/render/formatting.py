@@ -141,17 +141,113 @@ def xacro_text(text: object) -> str:
     return str(text).replace("$", "${'$'}")
 
 
+# what xacro leaves alone in a document: comments (unless switched on, see xacro_document),
+# processing instructions and CDATA sections (minidom keeps them out of xacro's text walk)
+_XACRO_INERT = re.compile(r"<!--.*?-->|<\?.*?\?>|<!\[CDATA\[.*?\]\]>", re.DOTALL)
+EVAL_COMMENTS = "xacro:eval-comments"
+
+
+def xacro_document(xml: str) -> str:
+    """A whole XML document (the SRDF MoveItConfigsBuilder expands with xacro) that xacro
+    expands to ``xml``: every ``$`` of an attribute value or text written ``${'$'}``, and a
+    comment that would switch comment evaluation on broken up (xacro drops such a comment;
+    a descgen document has none). Comments, processing instructions and CDATA keep their
+    ``$`` (xacro does not evaluate them). Unchanged when there is nothing to escape. The
+    document must hold no ``xacro:`` element or attribute (descgen's SRDF has none). The
+    quotes are character references, so the escape fits either attribute quoting."""
+    if "$" not in xml and EVAL_COMMENTS not in xml:
+        return xml
+    dollar = "${&#39;$&#39;}"
+    out: list[str] = []
+    last = 0
+    for m in _XACRO_INERT.finditer(xml):
+        out.append(xml[last : m.start()].replace("$", dollar))
+        out.append(m.group().replace(EVAL_COMMENTS, "xacro: eval-comments"))
+        last = m.end()
+    out.append(xml[last:].replace("$", dollar))
+    return "".join(out)
+
+
 def yaml_scalar_safe(text: str) -> Markup:
     """Mark already-serialised YAML as safe for a template (no HTML escaping)."""
     return Markup(text)
 
 
+# Markdown (CommonMark, and GFM's tables and strikethrough, as GitHub renders it). A value from the
+# input is text or code, never markup: no raw HTML, no link or image, no emphasis, no block of its
+# own, and it cannot leave the code span, fence or table cell it is written into. Plain names
+# (nearly every one) print as they always did.
+_MD_ALWAYS = frozenset("\\`*[]<>&|~")  # inline markup anywhere in a line: escaped with a backslash
+# what makes a line a heading, list item, thematic break or setext underline (a quote, ``>``, and
+# fences, ``` and ~~~, are escaped anywhere): group 1 ends at the character to escape
+_MD_BLOCK_START = re.compile(r"(#|[-+]|\d{1,9}[.)])(?=[ \t]|$)|(=)+[ \t]*$|(-)[ \t]*(?:-[ \t]*){2,}$")
+_MD_DEST_SAFE = "/._-~"  # besides letters and digits: what a link destination keeps as written
+
+
+def mdtext(text: object) -> str:
+    """Text as Markdown text, on one line (whitespace runs become one space): every character
+    that could start markup escaped (``\\ ` * [ ] < > & | ~``, and ``_`` unless inside a word,
+    where CommonMark gives it no meaning), and a leading ``#``, ``>``, ``+``, ``-``, ``=`` or
+    ``1.`` escaped, so the text starts no block even at the start of a line."""
+    s = visible(" ".join(str(text).split()))
+    out = []
+    last = len(s) - 1
+    for i, ch in enumerate(s):
+        if ch in _MD_ALWAYS or (ch == "_" and not (0 < i < last and s[i - 1].isalnum() and s[i + 1].isalnum())):
+            out.append("\\" + ch)
+        else:
+            out.append(ch)
+    return _no_block("".join(out))
+
+
+def _no_block(s: str) -> str:
+    """``s`` with a backslash before the character that would make its line a block."""
+    m = _MD_BLOCK_START.match(s)
+    if m is None:
+        return s
+    at = m.end(1) - 1 if m.group(1) is not None else 0  # #, -, + or the . of "1."; a line of = or -
+    return s[:at] + "\\" + s[at:]
+
+
+def _code_fence(s: str) -> str:
+    """``s`` as a CommonMark code span: fenced by more backticks than its longest run, padded
+    with a space where CommonMark strips one (or a backtick would touch the fence)."""
+    run = max((len(m) for m in re.findall(r"`+", s)), default=0)
+    fence = "`" * (run + 1)
+    strips = s.startswith(" ") and s.endswith(" ") and s.strip(" ") != ""
+    pad = " " if s.startswith("`") or s.endswith("`") or strips else ""
+    return fence + pad + s + pad + fence
+
+
+def mdspan(text: object) -> str:
+    """A value as one code span in running text (a paragraph, a heading; not a table cell, see
+    :func:`mdcode`): one line, fenced so that nothing in it closes the span."""
+    return _code_fence(visible(text))
+
+
+def mdfence(text: str, lang: str = "") -> list[str]:
+    """Lines of a fenced code block holding ``text`` as it is: the fence is longer than any
+    backtick run in it (at least three), so no line of it closes the block."""
+    lines = re.split(r"\r\n|\r|\n", text.rstrip("\r\n")) if text.rstrip("\r\n") else []
+    run = max((len(m) for m in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, run + 1)
+    return [f"{fence}{lang}", *lines, fence, ""]
+
+
+def mddest(target: str) -> str:
+    """A link destination (a relative path) percent-encoded: nothing in it can end the link,
+    start another or name a scheme. A plain path prints as it is."""
+    from urllib.parse import quote
+
+    return quote(target, safe=_MD_DEST_SAFE)
+
+
 def mdcell(text: object) -> str:
     """Text safe in a Markdown table cell: one line, pipes and markup escaped."""
     s = visible(" ".join(str(text).split()))
-    for ch in "\\|`*_[]<>":
+    for ch in "\\|`*_[]<>&~":
         s = s.replace(ch, "\\" + ch)
-    return s
+    return _no_block(s)  # a cell is inline, but templates write the same text after "- " too
 
 
 def mdcode(text: object) -> str:
@@ -159,9 +255,8 @@ def mdcode(text: object) -> str:
     longest run in it (CommonMark), with ``|`` escaped (GFM splits cells before code spans);
     a plain name prints as it always did, in single backticks."""
     s = visible(text)
-    if "`" not in s and "|" not in s:  # a plain name (nearly every one): single backticks
-        return f"`{s}`"
-    run = max((len(m) for m in re.findall(r"`+", s)), default=0)
-    fence = "`" * (run + 1)
-    pad = " " if s.startswith("`") or s.endswith("`") else ""
-    return fence + pad + s.replace("|", "\\|") + pad + fence
+    if "`" not in s and "|" not in s and not (s.startswith(" ") and s.endswith(" ")):
+        return f"`{s}`"  # a plain name (nearly every one): single backticks
+    fenced = _code_fence(s)
+    fence = len(fenced) - len(fenced.rstrip("`"))
+    return fenced[:fence] + fenced[fence:-fence].replace("|", "\\|") + fenced[-fence:]

@@ -26,6 +26,15 @@ from .mujoco_urdf import emit
 BASES = ("fixed", "floor")
 MIN_SECONDS, MAX_SECONDS = 0.01, 10.0
 DEFAULT_SECONDS = 2.0
+# What MuJoCo is given (SIM017, exit 2, before anything is compiled), so that a robot of 10,000
+# links is a finding in a second, not minutes. MuJoCo's compiler and the servos' pseudo-inverse
+# grow with the cube of the degrees of freedom (a 1,000-joint chain: 22 s to compile, 3 s of SVD);
+# a step factorises the mass matrix, sum(depth^2) over the degrees of freedom (depth: how many
+# of them are above it, itself included; a chain's N^3 / 3), ~1e-9 s per unit here.
+MAX_LINKS = 2_000
+MAX_DOFS = 500
+MAX_WORK = 15_000_000_000  # steps x sum(depth^2): a 250-joint chain for 2 s (2,000 steps), ~15 s
+_NV = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 6}
 
 
 @dataclass(frozen=True)
@@ -108,8 +117,48 @@ def _clamped_zero(j: Any) -> float:
     return float(min(max(0.0, lm.lower), lm.upper))
 
 
+def too_large(robot: Robot, seconds: float, free: bool) -> str:
+    """Why ``robot`` is past the bounds MuJoCo is given (:data:`MAX_LINKS`, :data:`MAX_DOFS`,
+    :data:`MAX_WORK`), or "". Linear in the model."""
+    if len(robot.links) > MAX_LINKS:
+        return f"{len(robot.links):,} links, more than the {MAX_LINKS:,} descgen simulates"
+    parent = {j.child: j for j in robot.joints if j.child is not None and j.parent is not None}
+    above: dict[str, int] = {}  # link -> degrees of freedom from the root to it
+
+    def dofs_to(link: str) -> int:
+        path: list[str] = []
+        n = link
+        while n in parent and n not in above and len(path) <= len(parent):  # a cycle ends the walk
+            path.append(n)
+            n = parent[n].parent or ""
+        d = above.get(n, 6 if free else 0)
+        for m in reversed(path):
+            d += _NV.get(parent[m].type, 0)
+            above[m] = d
+        return above.get(link, d)
+
+    work = sum(d * d for d in range(1, 7)) if free else 0
+    nv = 6 if free else 0
+    for child, j in parent.items():
+        k = _NV.get(j.type, 0)
+        if k:
+            below = dofs_to(child)  # this joint's degrees of freedom are the last k of the path
+            nv += k
+            work += sum(d * d for d in range(below - k + 1, below + 1))
+    if nv > MAX_DOFS:
+        return f"{nv:,} degrees of freedom, more than the {MAX_DOFS:,} descgen simulates"
+    steps = max(1, round(seconds / gravity.TIMESTEP))
+    if steps * work > MAX_WORK:
+        return (
+            f"{steps:,} steps of a mass matrix costing {work:,} (the sum of each degree of freedom's depth "
+            f"squared) are {steps * work:,}, more than the {MAX_WORK:,} descgen simulates"
+        )
+    return ""
+
+
 def simulate(robot: Robot, settings: Settings, description: Path | None, package_paths: Sequence[Path] = ()) -> Outcome:
-    """Compile ``robot`` with MuJoCo, report its refusals and silent changes, run gravity."""
+    """Compile ``robot`` with MuJoCo, report its refusals and silent changes, run gravity.
+    InputError (SIM017) for a robot past the bounds (:func:`too_large`), before MuJoCo sees it."""
     require_mujoco()
     import mujoco
 
@@ -118,6 +167,20 @@ def simulate(robot: Robot, settings: Settings, description: Path | None, package
     root = robot.root()
     if base == "floor" and (root is None or root == "world"):
         base = "fixed"  # no single root to set free; reported in the report's "base"
+    why = too_large(robot, settings.seconds, base == "floor")
+    if why:
+        raise InputError(
+            [
+                finding(
+                    "SIM017",
+                    f"{robot.name} is too large to simulate: {why}",
+                    "simulate a smaller description (fewer links or moving joints), or fewer --seconds when the "
+                    "run's work is past its bound (the bounds keep a run within about 15 s; docs/security.md)",
+                    f"robot:{robot.name}",
+                    robot.where,
+                )
+            ]
+        )
     pose = pose_values(robot, settings.pose)
     setup = gravity.Setup(base, settings.seconds, tuple(pose.items()), settings.gear, settings.damping)
     held = gravity.servos(robot, setup)

@@ -17,6 +17,7 @@ from lxml import etree
 
 from ..findings import Finding
 from ..model import Collision, Joint, Link, Mesh, Robot, Visual
+from ..packages import manifest_name
 from ..readers.xacro_file import find_package, package_root
 from ..safeio import read_bounded
 from ..urdf_xml import geometry, origin, xyz
@@ -43,8 +44,10 @@ def resolve_mesh(name: str, description: Path | None, package_paths: Sequence[Pa
     try:
         if name.startswith("package://"):
             pkg, _, rest = name[len("package://") :].partition("/")
-            roots = [*package_paths, *((base.parent, base) if base is not None else ())]
-            found = find_package(pkg, roots) if pkg else None
+            # the named folders, then the description's own package; never the folders beside it
+            found = find_package(pkg, package_paths) if pkg else None
+            if found is None and base is not None and pkg and manifest_name(package_root(base) / "package.xml") == pkg:
+                found = package_root(base)
             if found is None:
                 return None
             root, target = found.resolve(), (found / rest).resolve()

@@ -24,7 +24,7 @@ from .joints import joint
 from .links import link
 from .moveit import moveit
 from .ros2_control import ros2_control
-from .rules import duplicate_semantics
+from .rules import duplicate_materials, duplicate_semantics
 from .semantic import complete_states, known_pose, semantic
 from .sources import cites_sources
 
@@ -94,6 +94,7 @@ class Builder:
             ),
             passthrough=tuple(p.xml for p in spec.passthrough),
         )
+        conv.findings += duplicate_materials(self.doc, spec)
         if spec.semantic is not None:
             conv.findings += duplicate_semantics(self.doc, spec.semantic)
             with_semantic = replace(robot, semantic=semantic(conv, spec.semantic, poses))

@@ -8,11 +8,13 @@ inertial origin if given, else the shape's centroid. A mesh shape must be watert
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from .. import inertia as mass_props
 from .. import mesh_paths
 from .. import model as m
+from ..findings import Where
 from ..yamlsource import Path_
 from . import models as s
 from .convert import Converter
@@ -54,8 +56,31 @@ def inertial(
             subject,
             conv.where((*path, "from")),
         )
+    tensor_or_none = _finite(conv, spec, tensor_or_none, subject, conv.where((*path, "from")))
     com = shape.origin.xyz if spec.origin is None else pose(spec.origin).xyz
     return m.Inertial(mass, m.Pose(com, (0.0, 0.0, 0.0)), tensor_or_none, conv.where(path))
+
+
+def _finite(
+    conv: Converter, spec: s.InertialSpec, tensor: m.Inertia | None, subject: str, where: Where
+) -> m.Inertia | None:
+    """The tensor, or None with INER032 when it overflows: plausibility ranges widened to the
+    edge of the floats (1e300 kg, 1e200 m) give moments of inf, and an infinite tensor has no
+    principal moments, for the rules or for any simulator."""
+    if tensor is None or all(
+        math.isfinite(v) for v in (tensor.ixx, tensor.ixy, tensor.ixz, tensor.iyy, tensor.iyz, tensor.izz)
+    ):
+        return tensor
+    conv.error(
+        "INER032",
+        f"the inertia computed from the {spec.from_} shape overflows (not a finite number): "
+        "the mass or the shape's size is beyond what a part can have",
+        "give the measured mass and size, or the inertia explicitly; widen plausibility: ranges only as far as a "
+        "real robot needs",
+        subject,
+        where,
+    )
+    return None
 
 
 def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Pose, path: Path_) -> m.Inertial:
@@ -95,7 +120,8 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
     if found is None:
         conv.error("INER030", f"mesh '{mesh.filename}' bounds no volume", _GIVE, subject, where)
         return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
-    com, tensor = found
+    com, computed = found
+    tensor = _finite(conv, spec, computed, subject, where)
     com = com if spec.origin is None else pose(spec.origin).xyz
     return m.Inertial(spec.mass.si, m.Pose(com, (0.0, 0.0, 0.0)), tensor, conv.where(path))
 

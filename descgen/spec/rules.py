@@ -1,5 +1,6 @@
 """Spec rules that need the whole validated spec and no model: every measured value cites a
-source (SPEC010, with ``require_sources: true``), and MoveIt's keys are unique (SPEC024).
+source (SPEC010, with ``require_sources: true``), MoveIt's keys are unique (SPEC024), and so are
+the materials' names (SPEC026).
 The model's own rules run later, in ``descgen.audit``."""
 
 from __future__ import annotations
@@ -43,6 +44,29 @@ def duplicate_semantics(doc: Document, sem: s.SemanticSpec) -> list[Finding]:
                     )
                 )
             seen.add(key)
+    return out
+
+
+def duplicate_materials(doc: Document, spec: s.RobotSpec) -> list[Finding]:
+    """SPEC026: urdfdom refuses a URDF whose robot-level materials share a name, so the
+    generated URDF would fail every reader (GEN070 at generate, before this rule); refuse the
+    second at validate."""
+    out: list[Finding] = []
+    first: dict[str, int] = {}
+    for i, mt in enumerate(spec.materials):
+        if mt.name in first:
+            out.append(
+                Finding(
+                    "SPEC026",
+                    "error",
+                    f"material '{mt.name}' is listed twice in materials (first as entry {first[mt.name] + 1})",
+                    "remove the second entry or give it another name (urdfdom refuses a repeated material)",
+                    f"materials.{i}",
+                    doc.where(("materials", i)),
+                )
+            )
+        else:
+            first[mt.name] = i
     return out
 
 

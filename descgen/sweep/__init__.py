@@ -18,7 +18,7 @@ from __future__ import annotations
 import hashlib
 import json
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +33,14 @@ from .motion import JointMotion, NoRange, analyse, axis_text, direction, grid, s
 ALGORITHM = "descgen-sweep-1"  # bump when results change: memoised and committed runs are then recomputed
 DEFAULT_STEPS = 36
 MIN_STEPS, MAX_STEPS = 1, 3600
+# The sweep's bounds (SWEEP007, SWEEP008), so that a robot of 10,000 links is a finding in a
+# second, not hours of work, gigabytes, or pinocchio's stack overflow (it recurses down the
+# tree, and crashed past ~3,500 joints deep, exit 139). Each joint's forward kinematics at every grid step
+# visits every link: joints x links x (steps + 1) link poses, ~20 us each in plain floats.
+MAX_POSES = 500_000  # ~20 s; a 116-link chain at the default 36 steps, 500 links at --steps 1
+# Collision tests: pairs checked x (steps + 1), ~4 us each (~8 s); what pinocchio may be given
+# at all is collision.too_large's (shapes and depth).
+MAX_CHECKS = 2_000_000
 
 
 @dataclass(frozen=True)  # a frozen dataclass: ruff sees a default Settings() as immutable
@@ -57,6 +65,8 @@ class Sweep:
     skipped: tuple[str, ...]  # links without collision geometry
     unresolved: tuple[str, ...]  # links whose collision mesh the model could not resolve (left out)
     key: str  # the memo key ("" when not memoised)
+    too_large: str = ""  # why nothing was swept: the robot is past MAX_POSES (SWEEP007)
+    too_many_checks: bool = False  # collisions not checked: past MAX_CHECKS or MAX_SHAPE_PAIRS (SWEEP008)
 
     def motion(self, joint: str) -> JointMotion:
         return next(m for m in self.motions if m.joint.name == joint)
@@ -157,17 +167,36 @@ def compute(robot: Robot, settings: Settings = Settings(), progress: Callable[[s
     state, values = state_values(robot, settings.state)
     disabled, disabled_by = disabled_pairs(robot)
     geometry = [lk.name for lk in robot.links if lk.collisions]
+    joints = sweepable(robot)
+    poses = len(joints) * len(robot.links) * (settings.steps + 1)
+    if poses > MAX_POSES:
+        why = (
+            f"sweeping {len(joints):,} joints of {len(robot.links):,} links through {settings.steps + 1} steps "
+            f"computes {poses:,} link poses, more than the sweep's bound of {MAX_POSES:,}"
+        )
+        return Sweep(
+            robot, state, tuple(sorted(values.items())), settings.steps, padding(robot), disabled_by,
+            len(disabled), (), (), None, why, (), (), "", too_large=why,
+        )  # fmt: skip
     motions, empty = [], []
-    for j in sweepable(robot):
+    checks = 0  # collision tests so far (pairs x grid steps)
+    for j in joints:
         g = grid(j, settings.steps)
         if isinstance(g, str):
             empty.append(NoRange(j, g))
             continue
-        motions.append(analyse(robot, j, g[0], g[1], values, geometry, disabled))
-    key = memo_key(robot, state, values, settings.steps, disabled)
+        left = max(MAX_CHECKS - checks, 0) // len(g[0])
+        motions.append(analyse(robot, j, g[0], g[1], values, geometry, disabled, left))
+        checks += len(motions[-1].pairs) * len(g[0])
+    too_many = collision.too_large(robot)
+    over = any(m.pairs_over for m in motions) or bool(too_many)
+    key = "" if over else memo_key(robot, state, values, settings.steps, disabled)
     found: tuple[Run, ...] | None = _RUNS.get(key) if key else None
     note = ""
-    if found is None:
+    if over:
+        motions = [replace(m, pairs=(), pairs_over=True) for m in motions]
+        note = too_many or f"the sweep would make more than {MAX_CHECKS:,} pair tests (pairs x steps), its bound"
+    elif found is None:
         if not available():
             note = "pinocchio is not installed"
         else:
@@ -192,6 +221,7 @@ def compute(robot: Robot, settings: Settings = Settings(), progress: Callable[[s
         tuple(lk.name for lk in robot.links if not lk.collisions),
         tuple(unresolved_meshes(robot)),
         key,
+        too_many_checks=over,
     )
 
 
@@ -215,6 +245,17 @@ def findings(sw: Sweep) -> list[Finding]:
     out: list[Finding] = []
     robot = sw.robot
     at = f" (others at state {sw.state})" if sw.state else " (others at zero)"
+    if sw.too_large:
+        return [
+            finding(
+                "SWEEP007",
+                f"{robot.name} is too large to sweep: {sw.too_large}",
+                "sweep with fewer --steps, or a description with fewer links or joints (the bound keeps a sweep "
+                "within about 20 s and its memory small; docs/security.md)",
+                f"robot:{robot.name}",
+                robot.where,
+            )
+        ]
     for nr in sw.no_range:
         out.append(
             finding(
@@ -225,7 +266,18 @@ def findings(sw: Sweep) -> list[Finding]:
                 nr.joint.where,
             )
         )
-    if sw.runs is None:
+    if sw.too_many_checks:
+        out.append(
+            finding(
+                "SWEEP008",
+                f"self-collisions were not checked: {sw.note}; directions only",
+                "sweep with fewer --steps, disable pairs that cannot collide in the SRDF, or give fewer collision "
+                "shapes (simpler collision geometry); a tree deeper than pinocchio takes is not checked",
+                f"robot:{robot.name}",
+                robot.where,
+            )
+        )
+    elif sw.runs is None:
         out.append(
             finding(
                 "SWEEP005",
@@ -374,4 +426,6 @@ def sweep_description(
     else:
         robot, read = load_description(path, options)
     sw = compute(robot, settings, progress)
+    if sw.too_large:  # nothing to show: unusable input for this command (exit 2), as a file too large
+        raise InputError([*read, *findings(sw)])
     return sw, [*read, *findings(sw)]

@@ -374,6 +374,18 @@ def audit_all(
     one CPU-bound stream). Every recording is audited; the input errors of all of them are
     raised together, so one unreadable recording does not hide another's. ``show_progress``:
     the messages of each recording on a terminal, or the recordings done with ``jobs``."""
+    outcomes = audit_each(paths, target, jobs, show_progress, **kwargs)
+    errors = [f for _, findings in outcomes for f in findings]
+    if errors:
+        raise InputError(errors)
+    return [rep for rep, _ in outcomes if rep is not None]
+
+
+def audit_each(
+    paths: list[Path], target: str, jobs: int = 1, show_progress: bool = False, **kwargs: Any
+) -> list[tuple[Report | None, tuple[Finding, ...]]]:
+    """:func:`audit_all` without raising: for each recording, in order, its report or the input
+    errors that kept it from one, so the readable recordings are reported beside the unreadable."""
     kwargs["target"] = target
     if jobs <= 1 or len(paths) <= 1:
         outcomes = [_audit_one(p, kwargs | {"show_progress": show_progress}) for p in paths]
@@ -384,7 +396,4 @@ def audit_all(
 
         with counting(len(paths), "tf-audit", "recording", show_progress) as step:
             outcomes = map_in_processes(partial(_audit_one, kwargs=kwargs), paths, jobs, step)
-    errors = [f for _, findings in outcomes for f in findings]
-    if errors:
-        raise InputError(errors)
-    return [rep for rep, _ in outcomes if rep is not None]
+    return outcomes

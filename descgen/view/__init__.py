@@ -1,18 +1,28 @@
 """``descgen view``: the robot in the browser (viser). This module computes what the viewer shows
-(sliders, presets, frames, the known-pose markers), with no viser import, so it is tested
-without a browser; ``server.py`` draws it."""
+(sliders, presets, frames, the known-pose markers, which meshes it may read), with no viser
+import, so it is tested without a browser; ``server.py`` draws it and guards the server.
+
+The viewer reads only the meshes the one mesh resolver accepted (descgen/mesh_paths.py, as
+``validate`` and ``audit`` do: ``Robot.mesh_files``), and reads them as the audit does
+(descgen/meshes.py: at most 64 MiB, a binary STL's triangle count from its header before it
+is parsed, no file an OBJ or DAE names besides itself). Every other mesh is a finding, printed
+and shown on the page, and the link is drawn without it."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .. import kinematics, mimic
-from ..findings import Finding, InputError, Where
-from ..model import ONE_DOF, Robot
+from ..findings import Finding, InputError, Severity, Where
+from ..model import ONE_DOF, Mesh, Robot
+
+if TYPE_CHECKING:
+    from ..meshes import Loaded
 
 Vec3 = tuple[float, float, float]
 
@@ -111,6 +121,68 @@ def joint_axes(robot: Robot, q: dict[str, float]) -> list[tuple[str, Vec3, Vec3]
     return out
 
 
+# why a mesh is not shown, by the resolver's state: the audit's codes (descgen/audit/rules/geometry.py)
+# and severities (the rules need not be loaded for them)
+_REFUSED: dict[str, tuple[str, Severity, str, str]] = {
+    "escapes": ("GEOM004", "error", "points outside its package", "use package://<pkg>/<path inside the package>"),
+    "missing": ("GEOM003", "error", "does not exist", "fix the path or add the file"),
+    "unresolved": (
+        "GEOM005",
+        "warning",
+        "names a package that cannot be found",
+        "fix the package name, or pass --package-path",
+    ),
+}
+
+
+def mesh_plan(robot: Robot) -> tuple[dict[str, Loaded], list[Finding]]:
+    """The meshes the viewer shows (filename as written in the URDF -> the mesh read from the
+    file the resolver accepted) and a finding for every mesh it does not show: refused by the
+    resolver (absolute, ``file://``, ``..`` or a link out of the package, a package that is not
+    found, a missing file; the audit's GEOM003-005) or unreadable (over 64 MiB, more triangles
+    than the audit reads, malformed: GEOM033). No file is opened for a refused name."""
+    from ..audit.registry import at
+    from ..meshes import MeshError
+    from ..meshes import load as load_mesh
+
+    files = dict(robot.mesh_files)  # only names the resolver accepted have a file
+    status = dict(robot.mesh_status)
+    shown: dict[str, Loaded] = {}
+    failed: dict[str, str] = {}
+    found: list[Finding] = []
+    seen: set[tuple[str, str]] = set()
+    for lk in robot.links:
+        for shape in lk.shapes():
+            g = shape.geometry
+            if not isinstance(g, Mesh) or (lk.name, g.filename) in seen:
+                continue
+            seen.add((lk.name, g.filename))
+            name = g.filename
+            file = files.get(name)
+            if file is None or status.get(name, "ok") != "ok":
+                code, severity, why, hint = _REFUSED.get(status.get(name, "missing"), _REFUSED["missing"])
+                message = f"link '{lk.name}' mesh '{name}' {why}; not shown"
+                found.append(at(code, shape, message, hint, severity, lk.subject))
+                continue
+            if name not in shown and name not in failed:
+                try:
+                    shown[name] = load_mesh(Path(file))
+                except MeshError as exc:
+                    failed[name] = str(exc)
+            if name in failed:
+                found.append(
+                    at(
+                        "GEOM033",
+                        shape,
+                        f"link '{lk.name}' mesh '{name}' cannot be read: {failed[name]}; not shown",
+                        "check the file opens in a mesh viewer; re-export it as binary STL",
+                        "info",
+                        lk.subject,
+                    )
+                )
+    return shown, found
+
+
 def require_viser() -> None:
     """VIEW001 (exit 2) when the optional viewer is not installed, with the command that installs it."""
     try:
@@ -132,11 +204,16 @@ def require_viser() -> None:
 
 
 def load(path: Path, package_paths: tuple[Path, ...] = ()) -> tuple[Robot, str]:
-    """The model and the URDF text of a spec, URDF or Xacro (a Xacro expanded in the sandbox)."""
+    """The model and the URDF text of a spec, URDF or Xacro (a Xacro expanded in the sandbox).
+    A URDF is read once: the model (and the mesh names the resolver judged) come from the very
+    bytes the viewer shows."""
     from ..audit.inputs import Options, kind_of, load_description
+    from ..safeio import check_file, read_bounded
 
-    robot, _ = load_description(path, Options(package_paths=package_paths))
+    check_file(path, "description", display=str(path))  # a FIFO or a device: refused before kind_of
     kind = kind_of(path)
+    given = {path: read_bounded(path, "URDF", display=str(path))} if kind == "urdf" else None
+    robot, _ = load_description(path, Options(package_paths=package_paths), given)
     if kind == "spec":
         from ..render import render_package
 
@@ -148,7 +225,6 @@ def load(path: Path, package_paths: tuple[Path, ...] = ()) -> tuple[Robot, str]:
         xml = expand_located(path, str(path), {}, package_paths, False).xml
         text = xml.decode("utf-8") if isinstance(xml, bytes) else str(xml)
     else:
-        from ..safeio import read_bounded
-
-        text = read_bounded(path, "URDF", display=str(path)).decode("utf-8", "replace")
+        assert given is not None
+        text = given[path].decode("utf-8", "replace")
     return robot, text

@@ -1,21 +1,52 @@
 """The viser scene of ``descgen view``: the robot (visual and collision), a slider per independent
 joint, a button per known pose and SRDF state, link frames with names, joint axes as arrows, and
-each known pose's measured positions as markers beside the model's frames with the error."""
+each known pose's measured positions as markers beside the model's frames with the error.
+
+The server answers only its own page (docs/security.md, "descgen view"):
+
+* it binds 127.0.0.1 unless ``--host`` says otherwise;
+* every HTTP request and websocket handshake must carry a ``Host`` that names the address the
+  request arrived on (or ``localhost`` on a loopback address), or the address it is bound to,
+  with the server's port, or a name given to :func:`start` (``allowed``): a page of another
+  site whose name was rebound to this address (DNS rebinding) sends its own name and is
+  refused with 403;
+* a websocket handshake must carry ``Origin: http://<that Host>``, and any other request that
+  carries an ``Origin`` must carry that one: a page of another site cannot open the websocket
+  through the user's browser and read the scene (403);
+* viser's share button (a public tunnel through share.viser.studio) is hidden and its message
+  ignored.
+
+viser offers no hook for this: it builds its ``websockets`` server inside its own thread, with
+its own ``process_request`` (the static client files). So while the ``ViserServer`` is made,
+:func:`_guarded_serve` puts a wrapper in place of ``websockets.asyncio.server.serve`` that runs
+:func:`refusal` before viser's ``process_request`` on every request; the original is restored
+as soon as the server is listening (the server keeps the wrapped hook for its lifetime). If
+viser stops building its server through that function the viewer refuses to start rather than
+serve unguarded.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import http
 import io
+import ipaddress
 import math
+import sys
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..findings import Finding
 from ..model import Robot
-from . import joint_axes, markers, presets, sliders
+from . import joint_axes, markers, mesh_plan, presets, sliders
+
+if TYPE_CHECKING:
+    from ..meshes import Loaded
 
 MEASURED = (220, 40, 40)  # red: where the robot was measured
 MODEL = (40, 110, 220)  # blue: where the model puts the frame
@@ -33,11 +64,13 @@ class Viewer:
     marker_nodes: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)  # name -> (model, measured)
     pose: str | None = None
     urdf: Any = None
+    findings: list[Finding] = field(default_factory=list)  # meshes not shown, and why
     _lock: threading.Lock = field(default_factory=threading.Lock)
 
     @property
     def url(self) -> str:
-        return f"http://{self.server.get_host()}:{self.server.get_port()}"
+        host = str(self.server.get_host())
+        return f"http://{f'[{host}]' if ':' in host else host}:{self.server.get_port()}"
 
     def set_joints(self, values: dict[str, float], pose: str | None = None) -> None:
         """Set sliders (and through them the robot) to ``values``; others to zero, within limits."""
@@ -131,31 +164,220 @@ def _preset(v: Viewer, values: dict[str, float], pose: str | None) -> Callable[[
     return lambda _: v.set_joints(values, pose)
 
 
-def start(robot: Robot, urdf_text: str, host: str, port: int, urdf_dir: Path | None = None) -> Viewer:
-    """Start the server (bound to ``host``) and build the scene and the controls."""
+# -- who may talk to the server --------------------------------------------------------------------
+
+
+def allowed_hosts(local: str, port: int, extra: Sequence[str] = ()) -> frozenset[str]:
+    """The ``Host`` values (lower case) of a request that arrived on ``local`` (an IP address)
+    at ``port``: that address, ``localhost`` and the loopback addresses when it is one, and the
+    names in ``extra``; each with ``:port`` (and bare on port 80, which browsers leave out)."""
+    try:
+        ip = ipaddress.ip_address(local.split("%", 1)[0])
+    except ValueError:
+        ip = None
+    if isinstance(ip, ipaddress.IPv6Address) and ip.ipv4_mapped is not None:
+        ip = ip.ipv4_mapped
+    names: set[str] = set()
+    if ip is not None:
+        names.add(f"[{ip}]" if ip.version == 6 else str(ip))
+        if ip.is_loopback:
+            names |= {"localhost", "127.0.0.1", "[::1]"}
+    names |= {n.lower().strip() for n in extra if n.strip()}
+    out = {f"{n}:{port}" for n in names}
+    if port == 80:
+        out |= names
+    return frozenset(out)
+
+
+def refusal(headers: Any, local: str, port: int, extra: Sequence[str] = ()) -> str | None:
+    """Why a request (its headers: a ``websockets`` ``Headers`` or a mapping) that arrived on
+    ``local``:``port`` is refused, or None when it is the viewer's own page talking."""
+    hosts = headers.get_all("Host") if hasattr(headers, "get_all") else [headers.get("Host")]
+    hosts = [h for h in hosts if h is not None]
+    if len(hosts) != 1:
+        return "a request needs exactly one Host header"
+    host = hosts[0].strip().lower()
+    if host not in allowed_hosts(local, port, extra):
+        return f"Host {host[:100]!r} is not this viewer's address (DNS rebinding?)"
+    origins = headers.get_all("Origin") if hasattr(headers, "get_all") else [headers.get("Origin")]
+    origins = [o for o in origins if o is not None]
+    websocket = str(headers.get("Upgrade") or "").strip().lower() == "websocket"
+    if websocket and not origins:
+        return "a websocket handshake needs the Origin header of the viewer's own page"
+    if origins and (len(origins) != 1 or origins[0].strip().lower() != f"http://{host}"):
+        return "Origin is not the viewer's own page (a page of another site?)"
+    return None
+
+
+def _guard(inner: Callable[..., Any] | None, extra: Sequence[str]) -> Callable[..., Any]:
+    """``process_request`` that refuses with 403 what :func:`refusal` refuses, then runs ``inner``."""
+
+    def process_request(connection: Any, request: Any) -> Any:
+        local = connection.local_address  # the socket the request arrived on: (address, port, ...)
+        why = refusal(request.headers, str(local[0]), int(local[1]), extra)
+        if why is not None:
+            return connection.respond(http.HTTPStatus.FORBIDDEN, f"descgen view: {why}\n")
+        return inner(connection, request) if inner is not None else None
+
+    return process_request
+
+
+_SERVE_LOCK = threading.Lock()
+
+
+@contextlib.contextmanager
+def _guarded_serve(extra: Sequence[str]) -> Iterator[list[bool]]:
+    """While a ViserServer is made: ``websockets.asyncio.server.serve`` wraps the
+    ``process_request`` it is given with :func:`_guard`. Yields a list that holds True once
+    a server was started through it."""
+    import websockets.asyncio.server as wss
+
+    real = wss.serve
+    used: list[bool] = []
+
+    def serve(handler: Any, host: Any = None, port: Any = None, *args: Any, **kwargs: Any) -> Any:
+        kwargs["process_request"] = _guard(kwargs.get("process_request"), extra)
+        used.append(True)
+        return real(handler, host, port, *args, **kwargs)
+
+    with _SERVE_LOCK:
+        wss.serve = serve  # type: ignore[misc,assignment]
+        try:
+            yield used
+        finally:
+            wss.serve = real  # type: ignore[misc]
+
+
+def _server(host: str, port: int, label: str, extra: Sequence[str]) -> Any:
+    """A ViserServer listening on ``host``:``port`` whose every request passes :func:`refusal`."""
     import viser
+
+    # the address it is bound to, as the URL it prints names it (http://0.0.0.0:8080 reaches it too):
+    # an IP literal (cli_types.host), so no name lookup can move it
+    extra = (*extra, f"[{host}]" if ":" in host else host)
+    with _guarded_serve(extra) as used:
+        server = viser.ViserServer(host=host, port=port, label=label, verbose=False)
+    if not used:  # viser no longer serves through websockets.asyncio.server.serve: do not serve unguarded
+        server.stop()
+        raise RuntimeError(
+            f"viser {getattr(viser, '__version__', '?')} does not build its server through "
+            "websockets.asyncio.server.serve; descgen view cannot check Host and Origin with it"
+        )
+    # the share button opens a public tunnel (share.viser.studio) to this server: never
+    with contextlib.suppress(Exception):
+        server.gui.configure_theme(show_share_button=False)
+    from viser import _messages
+
+    for message in ("ShareUrlRequest", "ShareUrlDisconnect"):
+        cls = getattr(_messages, message, None)
+        if cls is not None and cls in server._websock_server._incoming_handlers:
+            server._websock_server.unregister_handler(cls)
+    return server
+
+
+# -- the scene ------------------------------------------------------------------------------------
+
+
+def _urdf_model(urdf_text: str, shown: dict[str, Loaded]) -> Any:
+    """yourdfpy's model of the URDF without a single file read by yourdfpy or trimesh: its
+    primitives, and the meshes of ``shown`` (already read and bounded by descgen.meshes)."""
+    import trimesh
     import yourdfpy
-    from viser.extras import ViserUrdf
 
-    server = viser.ViserServer(host=host, port=port, label=f"descgen view: {robot.name}", verbose=False)
-    v = Viewer(server, robot)
-    handler: Callable[[str], str] | None = None
-    if urdf_dir is not None:
-        from functools import partial
+    from ..readers.urdf import parse_xml
 
-        handler = partial(yourdfpy.filename_handler_magic, dir=str(urdf_dir))
+    # yourdfpy parses with lxml's defaults (entities resolved): the text passes descgen's own
+    # parser first (no DTD, no entity; READ002 at exit 2). The readers refused one already.
+    parse_xml(urdf_text.encode("utf-8"), "the URDF shown by descgen view")
     model = yourdfpy.URDF.load(
         io.BytesIO(urdf_text.encode("utf-8")),
-        filename_handler=handler,
+        filename_handler=lambda fname: "",  # no name reaches the file system (no mesh is loaded by yourdfpy)
+        build_scene_graph=True,
         build_collision_scene_graph=True,
-        load_collision_meshes=True,
+        load_meshes=False,
+        load_collision_meshes=False,
     )
+    materials = {m.name: m for m in model.robot.materials if m.name is not None}
+    for link in model.robot.links:
+        for kind, shapes, scene in (
+            ("visual", link.visuals, model.scene),
+            ("collision", link.collisions, model.collision_scene),
+        ):
+            for i, shape in enumerate(shapes):
+                mesh = shape.geometry.mesh if shape.geometry is not None else None
+                if mesh is None or mesh.filename not in shown or scene is None:
+                    continue
+                loaded = shown[mesh.filename]
+                geom = trimesh.Trimesh(loaded.vertices.copy(), loaded.faces.copy(), process=False)
+                unit = loaded.facts.unit_meter or 1.0
+                scale = np.ones(3) if mesh.scale is None else np.broadcast_to(np.asarray(mesh.scale, float), (3,))
+                geom.apply_scale(scale * unit)  # type: ignore[no-untyped-call]
+                if kind == "visual":
+                    _colour(geom, shape, materials)
+                name = f"{link.name}/{kind}/{i}"
+                while name in scene.geometry or name in scene.graph.nodes:
+                    name += "_"
+                origin = shape.origin if shape.origin is not None else np.eye(4)
+                scene.add_geometry(geom, node_name=name, geom_name=name, parent_node_name=link.name, transform=origin)
+    return model
+
+
+def _colour(geom: Any, visual: Any, materials: dict[str, Any]) -> None:
+    material = visual.material
+    color = None
+    if material is not None:
+        color = material.color
+        if color is None and material.name in materials:
+            color = materials[material.name].color
+    if color is not None and color.rgba is not None:
+        geom.visual.face_colors = [int(255 * min(max(float(c), 0.0), 1.0)) for c in color.rgba]
+
+
+def _print(findings: Sequence[Finding]) -> None:
+    from ..report import text
+
+    sys.stderr.write(text(findings))
+    sys.stderr.flush()
+
+
+def start(
+    robot: Robot,
+    urdf_text: str,
+    host: str = "127.0.0.1",
+    port: int = 8080,
+    urdf_dir: Path | None = None,
+    *,
+    allowed: Sequence[str] = (),
+    report: Callable[[Sequence[Finding]], None] = _print,
+) -> Viewer:
+    """Start the server (bound to ``host``, loopback by default) and build the scene and the
+    controls. The meshes shown are those the resolver accepted for ``robot``
+    (:func:`descgen.view.mesh_plan`); ``urdf_dir`` is not searched (kept for callers). Every mesh
+    not shown is a finding: given to ``report`` (printed) and listed on the page. ``allowed``:
+    further host names a browser may use in ``Host`` (e.g. the machine's name when bound to
+    another address with ``--host``)."""
+    from viser.extras import ViserUrdf
+
+    del urdf_dir  # meshes come from robot.mesh_files only: no search beside the file
+    shown, findings = mesh_plan(robot)
+    model = _urdf_model(urdf_text, shown)
+    if findings:
+        report(findings)
+    server = _server(host, port, f"descgen view: {robot.name}", allowed)
+    v = Viewer(server, robot, findings=list(findings))
     v.urdf = ViserUrdf(server, model, root_node_name="/robot", load_collision_meshes=True)
     v.urdf.show_collision = False
     server.scene.add_grid("/grid", width=2.0, height=2.0, cell_size=0.1)
     server.initial_camera.position = (1.6, -1.6, 1.3)
     server.initial_camera.look_at = (0.0, 0.0, 0.4)
     gui = server.gui
+    if findings:
+        from ..report import printable
+
+        # plain text fields (never Markdown or HTML: a mesh name is someone else's text)
+        with gui.add_folder(f"meshes not shown ({len(findings)})"):
+            for f in findings:
+                gui.add_text(f"{f.severity}[{f.code}]", printable(f.message), multiline=True, disabled=True)
     with gui.add_folder("show"):
         for label, initial in (("visual", True), ("collision", False), ("frame axes", True), ("frame names", False)):
             v.buttons[label] = gui.add_checkbox(label, initial)
