@@ -12,24 +12,7 @@ from .model import WITH_LIMITS, Controller, Cylinder, Interface, Joint, Robot, S
 from .record import record
 
 if TYPE_CHECKING:
-    from .transforms import Mat
-
-# numpy (through transforms) only inside fixed_transform: this module is on the path of every
-# validate and check, which otherwise need no numpy
-
-
-def fixed_transform(robot: Robot, frame: str, base: str) -> Mat | None:
-    """Pose of ``frame`` in ``base`` with every joint at zero; None if ``base`` is not above it."""
-    import numpy as np
-
-    from .transforms import pose_matrix
-
-    t = np.eye(4)
-    for j in reversed(robot.path_to_root(frame)):
-        t = pose_matrix(j.origin.xyz, j.origin.rpy) @ t
-        if j.parent == base:
-            return t
-    return t if frame == base else None
+    pass
 
 
 def _wheel_names(c: Controller, key: str) -> list[str]:

@@ -94,10 +94,13 @@ def version(name: str) -> str:
 
 
 def descgen_identity() -> dict[str, object]:
-    """What every input hash holds about descgen itself and the interpreter it runs on."""
+    """What every input hash holds about descgen itself and the interpreter it runs on. The
+    interpreter by its minor version: committed evidence made with Python 3.11.7 is reused by a
+    checkout on Debian 12's 3.11.2 (a patch release changes no result descgen computes; the
+    libraries that compute results are named by their own versions)."""
     from . import __version__
 
-    return {"descgen": __version__, "source": source_digest(), "python": sys.version_info[:3]}
+    return {"descgen": __version__, "source": source_digest(), "python": sys.version_info[:2]}
 
 
 def package_files(package: Path, skip: tuple[str, ...] = ()) -> dict[str, str]:

@@ -38,15 +38,6 @@ def volume(g: Geometry) -> float | None:
     return None
 
 
-def centroidal(g: Geometry, mass: float) -> Rows | None:
-    """Inertia tensor about the centroid, in the geometry frame (rows); None for a mesh."""
-    principal = principal_moments(g, mass)
-    if principal is None:
-        return None
-    a, b, c = principal
-    return ((a, 0.0, 0.0), (0.0, b, 0.0), (0.0, 0.0, c))
-
-
 def principal_moments(g: Geometry, mass: float) -> Vec3 | None:
     """The diagonal of the centroidal tensor (a primitive's axes are its principal axes)."""
     if isinstance(g, Box):

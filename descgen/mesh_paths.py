@@ -30,7 +30,7 @@ from .findings import Finding, Where
 from .model import Collision, Link, Mesh, MeshState, Robot, Visual
 from .packages import find_package, manifest_name
 from .record import record
-from .safeio import MIB
+from .safeio import MIB, within
 
 MAX_MESH_BYTES = 64 * MIB  # the largest meshes of real robots are a few MB; a CAD dump may be tens
 PACKAGE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]*")  # what $(find) accepts too
@@ -100,7 +100,7 @@ def _resolve(
         return Resolved("escapes")
     else:
         inside, target = _realpath(str(root), folders), _realpath(os.path.join(base, name), folders)
-    if not _within(target, inside):  # the real path: a link out is caught too
+    if not within(target, inside):  # the real path: a link out is caught too
         return Resolved("escapes", package=package)
     try:
         st = os.stat(target)
@@ -128,11 +128,6 @@ def _realpath(path: str, folders: dict[str, str]) -> str:
         real_head = folders[head] = os.path.realpath(head)
     joined = os.path.join(real_head, tail)
     return os.path.realpath(joined) if os.path.islink(joined) else joined
-
-
-def _within(path: str, folder: str) -> bool:
-    """``Path(path).is_relative_to(folder)`` for two real (absolute, normalised) paths."""
-    return path == folder or path.startswith(folder.rstrip("/") + "/")
 
 
 # --- audited descriptions -------------------------------------------------------------------------
@@ -232,13 +227,6 @@ def package_name(robot: Robot) -> str:
     The one place every output (package.xml, CMake, launch, ``package://``, ``$(find)``, the
     MoveIt package) takes it from."""
     return robot.package.name or f"{robot.name}_description"
-
-
-def moveit_package_name(robot: Robot) -> str:
-    """``<robot>_moveit_config`` beside ``<robot>_description``: the description package's
-    name with ``_description`` replaced (or ``_moveit_config`` added)."""
-    name = package_name(robot)
-    return f"{name.removesuffix('_description')}_moveit_config"
 
 
 def own_mesh_path(written: str, folder: str = "/spec") -> str:

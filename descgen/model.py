@@ -533,7 +533,6 @@ class Robot:
     external_frames: tuple[ExternalFrame, ...] = ()
     joint_state_sources: tuple[JointStateSource, ...] = ()
     where: Where = NOWHERE
-    source_file: str | None = None
     spec_hash: str | None = None
     # Plausible density (kg/m^3, low and high) from a spec's ``plausibility.density``; None:
     # units.DEFAULT_RANGES (UNIT010). Kept as numbers so the model needs no unit parser.

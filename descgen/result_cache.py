@@ -29,6 +29,7 @@ import contextlib
 import json
 import os
 import re
+import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -52,6 +53,8 @@ def key(kind: str, inputs: object, tools: tuple[str, ...] = ()) -> str:
             "schema": SCHEMA,
             "kind": kind,
             **evidence_hash.descgen_identity(),
+            # a local cache can afford to be strict: the interpreter to its patch release
+            "python-patch": sys.version_info[:3],
             "tools": evidence_hash.versions(*tools),
             "inputs": inputs,
         }

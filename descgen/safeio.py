@@ -161,8 +161,9 @@ def read_head(path: Path, n: int) -> bytes:
 # --- folders the user named, and the files written for them -------------------------------------
 
 
-def _within(path: str, folder: str) -> bool:
-    """Whether the real path ``path`` is ``folder`` or below it (both real, absolute)."""
+def within(path: str, folder: str) -> bool:
+    """Whether the real path ``path`` is ``folder`` or below it (both real, absolute); the
+    separator matters: ``/a/pkg_evil`` is not inside ``/a/pkg``."""
     return path == folder or path.startswith(folder.rstrip("/") + "/")
 
 
@@ -171,7 +172,7 @@ def inside(path: Path, folder: Path) -> bool:
     a link out of a folder the user named is not in it, a link within it is. False for a path
     that cannot be resolved (a NUL byte, a link loop)."""
     try:
-        return _within(os.path.realpath(path), os.path.realpath(folder))
+        return within(os.path.realpath(path), os.path.realpath(folder))
     except (OSError, ValueError):
         return False
 

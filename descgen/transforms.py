@@ -29,20 +29,6 @@ def rpy_matrix(rpy: Sequence[float]) -> Mat:
     )
 
 
-def matrix_rpy(m: Mat) -> tuple[float, float, float]:
-    """The rpy of a rotation matrix (pitch in [-pi/2, pi/2])."""
-    sp = -float(m[2, 0])
-    sp = max(-1.0, min(1.0, sp))
-    pitch = math.asin(sp)
-    if abs(sp) < 1 - 1e-12:
-        roll = math.atan2(float(m[2, 1]), float(m[2, 2]))
-        yaw = math.atan2(float(m[1, 0]), float(m[0, 0]))
-    else:  # gimbal lock: put everything in yaw
-        roll = 0.0
-        yaw = math.atan2(-float(m[0, 1]), float(m[1, 1]))
-    return roll, pitch, yaw
-
-
 def pose_matrix(xyz: Sequence[float], rpy: Sequence[float]) -> Mat:
     t = np.eye(4)
     t[:3, :3] = rpy_matrix(rpy)

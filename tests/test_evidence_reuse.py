@@ -162,3 +162,23 @@ def test_the_record_is_over_its_own_content() -> None:
     assert not evidence_hash.reusable(record, key, "result edited")
     assert not evidence_hash.reusable(record, evidence_hash.digest({}), "result")
     assert not evidence_hash.reusable(None, key, "result")
+
+
+def test_committed_evidence_outlives_a_python_patch_release(monkeypatch: pytest.MonkeyPatch) -> None:
+    # a checkout on Debian 12's Python 3.11.2 reuses evidence committed from 3.11.7 (a fresh CI
+    # runner recomputed every piece of it, importing numpy, when the identity held the patch)
+    from types import SimpleNamespace
+
+    from descgen import evidence_hash, result_cache
+
+    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
+    committed, cache_key = evidence_hash.descgen_identity(), result_cache.key("x", {})
+    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
+    assert evidence_hash.descgen_identity() == committed
+    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 12, 0, "final", 0)))
+    assert evidence_hash.descgen_identity() != committed
+    # the local result cache stays strict: another patch release is another key
+    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
+    assert result_cache.key("x", {}) == cache_key
+    monkeypatch.setattr(result_cache, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
+    assert result_cache.key("x", {}) != cache_key

@@ -197,11 +197,14 @@ def test_inertia_from_a_mesh_of_another_package_uses_the_resolved_file(tmp_path:
     assert np.allclose(got, expected, rtol=1e-9, atol=1e-15)
 
 
-@pytest.mark.parametrize("how", ["dotdot", "link"])
+@pytest.mark.parametrize("how", ["dotdot", "link", "link to a sibling sharing the name's prefix"])
 def test_a_package_uri_cannot_leave_its_package(tmp_path: Path, how: str) -> None:
     vendor = tmp_path / "outside"
     pkg = _vendor(vendor)
     secret = vendor / "secret.stl"  # inside the --package-path folder, but outside the package
+    if how.endswith("prefix"):  # <pkg>_evil/ starts with <pkg>'s path, and is not inside it
+        secret = pkg.parent / f"{pkg.name}_evil" / "secret.stl"
+        secret.parent.mkdir()
     _tetra(secret)
     if how == "dotdot":
         name = "package://vendor_meshes/../secret.stl"

@@ -192,3 +192,39 @@ def test_cache_window_drops_old_data() -> None:
     assert buf.set_transform("a", "b", 5_000_000_000, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) == "TF_OLD_DATA"
     assert buf.set_transform("a", "a", 5, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) == "TF_SELF_TRANSFORM"
     assert buf.set_transform("a", "c", 5, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 2.0)) == "TF_DENORMALIZED_QUATERNION"
+
+
+def _edge_script(order: list[int]) -> dict[str, object]:
+    """Samples of one edge at the given stamps (seconds, set in that order), each a distinct
+    translation, then lookups at each stamp and a nanosecond either side."""
+    ops: list[dict[str, object]] = [
+        {
+            "op": "set",
+            "parent": "a",
+            "child": "b",
+            "stamp": s * 1_000_000_000,
+            "t": [float(s), 0.0, 0.0],
+            "q": [0.0, 0.0, 0.0, 1.0],
+            "static": False,
+        }
+        for s in order
+    ]
+    for s in sorted(set(order)):
+        for d in (-1, 0, 1):
+            ops.append({"op": "lookup", "target": "a", "source": "b", "time": s * 1_000_000_000 + d})
+    return {"cache_ns": 10_000_000_000, "ops": ops}
+
+
+# the cache window's edges: a sample exactly 10 s older than the newest is kept by tf2, and one
+# arriving exactly 10 s late is taken (the random histories rarely land on an edge to the ns)
+EDGES = [[1, 11], [1, 11, 21], [11, 1], [21, 11, 1], [1, 11, 12], [12, 2, 1]]
+
+
+def test_the_cache_window_edges_as_tf2(oracle: None) -> None:
+    scripts = [_edge_script(order) for order in EDGES]
+    for order, script, want in zip(EDGES, scripts, theirs(scripts), strict=True):
+        got = ours(script)
+        assert [g["kind"] for g in got] == [w["kind"] for w in want], (order, got, want)
+        for g, w in zip(got, want, strict=True):
+            if w["kind"] == "ok":
+                assert same_transform(g, w) and g["stamp"] == w["stamp"], (order, g, w)

@@ -186,7 +186,22 @@ def test_a_doctype_include_is_refused(tmp_path: Path) -> None:
 
 # --- bounded work ----------------------------------------------------------------------------
 
-LIMIT_PAYLOADS = ["${9**9**9}", "${'x' * 10**10}", "${[0] * 10**9}", "${2 &lt;&lt; 10**9}", "${python.range(10**12)}"]
+LIMIT_PAYLOADS = [
+    "${9**9**9}",
+    "${'x' * 10**10}",
+    "${[0] * 10**9}",
+    "${2 &lt;&lt; 10**9}",
+    "${python.range(10**12)}",
+]
+
+
+@pytest.mark.parametrize("payload", ["${'x' * 3000000}", "${3000000 * 'x'}", "${[0] * 3000000}", "${3000000 * [0]}"])
+def test_a_repetition_is_refused_before_it_is_built(tmp_path: Path, payload: str) -> None:
+    # whichever side the sequence is on; 3 MB, so a missed bound is caught by the size check of
+    # the built value (another message) instead of exhausting memory
+    path = write(tmp_path, f'  <link name="x{payload}"/>')
+    code, line, message = refusal(path)
+    assert (code, line) == ("READ033", 3) and "a repetition longer than" in message, message
 
 
 @pytest.mark.parametrize("payload", LIMIT_PAYLOADS)

@@ -63,13 +63,6 @@ def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Ca
     return register
 
 
-class Subject:
-    """Anything with a ``subject`` string and a ``where``: links, joints, ..."""
-
-    subject: str
-    where: Where
-
-
 def at(
     code: str,
     elem: object,

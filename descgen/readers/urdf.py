@@ -500,7 +500,6 @@ def read_urdf_text(
         tuple(r.material(e) for e in root.findall("material")),
         ros2_control=r.ros2_control(root.findall("ros2_control"), root),
         where=r.where(root),
-        source_file=file,
         sdf_preserved_joints=_sdf_preserved(root),
     )
     return robot, r.findings

@@ -168,11 +168,6 @@ def xacro_document(xml: str) -> str:
     return "".join(out)
 
 
-def yaml_scalar_safe(text: str) -> Markup:
-    """Mark already-serialised YAML as safe for a template (no HTML escaping)."""
-    return Markup(text)
-
-
 # Markdown (CommonMark, and GFM's tables and strikethrough, as GitHub renders it). A value from the
 # input is text or code, never markup: no raw HTML, no link or image, no emphasis, no block of its
 # own, and it cannot leave the code span, fence or table cell it is written into. Plain names

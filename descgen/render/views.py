@@ -10,7 +10,6 @@ part becomes one macro whose instances differ only by names and origin.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ..model import (
@@ -314,5 +313,4 @@ def items(robot: Robot, v: Values) -> tuple[list[Item], list[PartMacro]]:
     return out, list(macros.values())
 
 
-ViewFn = Callable[[Robot, Values], tuple[list[Item], list[PartMacro]]]
 __all__ = ["Item", "PartMacro", "Pose", "Prop", "Values", "items"]

@@ -76,7 +76,6 @@ class Builder:
             poses,
             description=spec.description,
             where=conv.where(()),
-            source_file=self.doc.file,
             package=m.PackageInfo(
                 spec.package.version,
                 spec.package.maintainer,

@@ -80,25 +80,6 @@ def quat_from_matrix(m: np.ndarray) -> Quat:
     return ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, 0.25 * s, (m[1, 0] - m[0, 1]) / s)
 
 
-def slerp(a: Quat, b: Quat, t: float) -> Quat:
-    """tf2::Quaternion::slerp: the shorter way round."""
-    dot = sum(x * y for x, y in zip(a, b, strict=True))
-    if dot < 0:
-        b, dot = (-b[0], -b[1], -b[2], -b[3]), -dot
-    dot = min(1.0, dot)
-    theta = math.acos(dot)
-    if theta == 0:
-        return a
-    d = 1.0 / math.sin(theta)
-    s0, s1 = math.sin((1 - t) * theta), math.sin(t * theta)
-    return (
-        (a[0] * s0 + b[0] * s1) * d,
-        (a[1] * s0 + b[1] * s1) * d,
-        (a[2] * s0 + b[2] * s1) * d,
-        (a[3] * s0 + b[3] * s1) * d,
-    )
-
-
 def _seconds(ns: int) -> str:
     return f"{ns / 1e9:.6f}"
 
