@@ -172,6 +172,7 @@ def test_committed_evidence_outlives_a_python_patch_release(monkeypatch: pytest.
     from descgen import evidence_hash, result_cache
 
     monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
+    monkeypatch.setattr(result_cache, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
     committed, cache_key = evidence_hash.descgen_identity(), result_cache.key("x", {})
     monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
     assert evidence_hash.descgen_identity() == committed
