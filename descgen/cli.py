@@ -112,7 +112,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         if junit:
             per_spec.append((str(spec), list(outcome.findings), outcome.diff))
         elif outcome.diff:
-            sys.stdout.write(outcome.diff)
+            sys.stdout.write(report.lines_text(outcome.diff))
         if not junit:
             sys.stderr.write(report.text(outcome.findings))
         if outcome.failed:

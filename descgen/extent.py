@@ -238,7 +238,7 @@ def moment_by_shapes(link: Link) -> MomentBound | None:
     worst: MomentBound | None = None
     for k in range(3):
         reach = farthest_from_axis(hulls, i.origin.xyz, rotate(turn, vecs[k]))
-        found = MomentBound(eig[k], i.mass * reach**2, reach)
+        found = MomentBound(eig[k], i.mass * reach * reach, reach)  # x*x: inf past the floats
         if found.bound > 0 and (worst is None or found.ratio > worst.ratio):
             worst = found
     return worst
@@ -259,7 +259,7 @@ def within_shapes(link: Link, hulls: list[Hull], margin: float) -> bool:
     hulls = distinct(hulls)
     for k in range(3):
         reach = farthest_from_axis(hulls, i.origin.xyz, rotate(turn, vecs[k]), _SAMPLED)
-        bound = i.mass * reach**2
+        bound = i.mass * reach * reach
         # a relative slack far above rounding: the exact reach is computed in another order
         if not (bound > 0 and eig[k] <= margin * bound * (1 - 1e-9)):
             return False
@@ -308,4 +308,4 @@ def half_trace_by_span(link: Link, span: float) -> MomentBound | None:
     if i is None or i.inertia is None or i.mass is None or i.mass <= 0 or span < MARKER:
         return None
     t = i.inertia
-    return MomentBound((t.ixx + t.iyy + t.izz) / 2, i.mass * span**2, span)
+    return MomentBound((t.ixx + t.iyy + t.izz) / 2, i.mass * span * span, span)

@@ -32,9 +32,9 @@ def volume(g: Geometry) -> float | None:
     if isinstance(g, Box):
         return g.size[0] * g.size[1] * g.size[2]
     if isinstance(g, Cylinder):
-        return math.pi * g.radius**2 * g.length
+        return math.pi * g.radius * g.radius * g.length  # x*x: inf past the floats, where ** raises
     if isinstance(g, Sphere):
-        return 4.0 / 3.0 * math.pi * g.radius**3
+        return 4.0 / 3.0 * math.pi * g.radius * g.radius * g.radius
     return None
 
 
@@ -48,7 +48,7 @@ def principal_moments(g: Geometry, mass: float) -> Vec3 | None:
         side = mass * (3 * r * r + h * h) / 12
         return (side, side, mass * r * r / 2)
     if isinstance(g, Sphere):
-        s = 2.0 / 5.0 * mass * g.radius**2
+        s = 2.0 / 5.0 * mass * g.radius * g.radius
         return (s, s, s)
     return None
 

@@ -169,9 +169,12 @@ def _bounded(key: tuple[float, ...]) -> Bounded | None:
     diag, err = found
     if not (math.isfinite(err) and err < 0.5):
         return None
-    # 2**-1074 per entry: what scaling may have lost of a subnormal; never a zero bound
-    err = math.ldexp(err + 1e-300, -shift) or 5e-324
-    d = sorted(math.ldexp(v, -shift) for v in diag)
+    try:
+        # 2**-1074 per entry: what scaling may have lost of a subnormal; never a zero bound
+        err = math.ldexp(err + 1e-300, -shift) or 5e-324
+        d = sorted(math.ldexp(v, -shift) for v in diag)
+    except OverflowError:  # a moment past the floats (entries near 1e308): not ours to give
+        return None
     return Bounded((d[0], d[1], d[2]), err)
 
 

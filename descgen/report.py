@@ -14,7 +14,9 @@ MAX_FIELD = 2000  # characters of one printed field, whatever it holds
 # C0, DEL, C1 (with NEL), the Unicode line and paragraph separators, and the bidi controls
 # that reorder what a terminal shows ("Trojan Source"): a value from an audited file
 # could otherwise start a new line that looks like a finding, or rewrite the terminal.
-_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u061c\u2028\u2029\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+# the same, but a multi-line text keeps its line breaks and tabs (a diff)
+_CONTROL_IN_LINES = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u061c\u2028\u2029\u200e\u200f\u202a-\u202e\u2066-\u2069]")
 _NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 _QUOTED = re.compile(f"'([^']{{{MAX_QUOTED + 1},}})'")
 
@@ -33,6 +35,13 @@ def printable(value: object, limit: int = MAX_FIELD) -> str:
     out = _CONTROL.sub(_escape, str(value))
     out = _QUOTED.sub(lambda m: "'" + m.group(1)[:MAX_QUOTED] + "…'", out)
     return out if len(out) <= limit else out[: limit - 1] + "…"
+
+
+def lines_text(value: str) -> str:
+    """A multi-line text (``check``'s diff of committed files) for a terminal: its lines and tabs
+    kept, every other control character escaped, so a file in a pull request cannot set the
+    terminal's title, clear the screen or erase the finding lines above it."""
+    return _CONTROL_IN_LINES.sub(_escape, value)
 
 
 def text(findings: Iterable[Finding]) -> str:

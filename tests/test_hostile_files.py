@@ -585,3 +585,30 @@ def test_the_frames_tree_prints_one_line_per_frame(tmp_path: Path, capsys: pytes
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 2 and lines[0] == "base"  # the root, then its one child
     assert lines[1].startswith("  arm\\nfake_frame  <- nobody\\x9b  <- robot_state_publisher on /tf")
+
+
+# --- found by the independent check of issue 34 -------------------------------------------------
+
+
+def test_check_prints_a_diff_without_the_terminal_controls_a_committed_file_holds(tmp_path: Path) -> None:
+    from tests.helpers import cli, user_project
+
+    project = user_project(tmp_path)
+    launch = project / "generated" / "warehouse_arm_description" / "launch" / "display.launch.py"
+    forged = "\x1b]0;pwned-title\x07\x1b[2J# x\x1b[1A\x1b[2K\u202e\u061c\x08"
+    launch.write_text(launch.read_text() + forged + "\n")
+    r = cli("check", "specs/warehouse_arm.yaml", cwd=project)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    # the committed file's line (the diff's "-" side), shown with its controls escaped
+    assert "-\\x1b]0;pwned-title\\x07\\x1b[2J# x\\x1b[1A\\x1b[2K\\u202e\\u061c\\x08\n" in r.stdout, r.stdout
+    assert not any(c in r.stdout for c in "\x1b\x07\x08\u202e\u061c")
+    assert "\n-" in r.stdout or "\n+" in r.stdout  # still a diff, line by line
+
+
+def test_a_name_with_the_arabic_letter_mark_is_refused(tmp_path: Path) -> None:
+    from tests.helpers import EXAMPLE_TEXT, cli
+
+    (tmp_path / "arm.yaml").write_text(EXAMPLE_TEXT.replace("tool_link", "tool\u061c_link"), encoding="utf-8")
+    r = cli("validate", "arm.yaml", cwd=tmp_path)
+    assert r.returncode == 2 and "error[SPEC05" in r.stderr, r.stderr
+    assert "\u061c" not in r.stderr and "\\u061c" in r.stderr

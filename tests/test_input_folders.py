@@ -98,6 +98,24 @@ def test_the_environment_never_renders_into_the_package(tmp_path: Path) -> None:
     assert r.returncode == 2 and "error[GEN065]" in r.stderr and "PATH=" not in r.stdout + r.stderr
 
 
+@pytest.mark.parametrize("name", [".git/config", "../.git/config", "secrets.txt"])
+def test_a_template_includes_only_templates(tmp_path: Path, name: str) -> None:
+    """``templates: ..`` is inside the project, and so is .git/config, where actions/checkout
+    keeps its token: only the folder's own *.j2 files are templates (found by the independent
+    check of issue 34)."""
+    _project(tmp_path)
+    (tmp_path / "specs" / "arm.yaml").write_text(SPEC.replace("templates: ../tpl", "templates: .."))
+    (tmp_path / ".git").mkdir()
+    (tmp_path / ".git" / "config").write_text(SECRET + "\n")
+    (tmp_path / "secrets.txt").write_text(SECRET + "\n")
+    (tmp_path / "display.launch.py.j2").write_text(f'# {{% include "{name}" %}}\n')
+    for command in ("generate", "check"):
+        r = cli(command, "specs/arm.yaml", cwd=tmp_path)
+        assert r.returncode == 2 and "Traceback" not in r.stderr, (command, r.stdout + r.stderr)
+        assert SECRET not in r.stdout + r.stderr
+    assert not (tmp_path / "generated").exists()
+
+
 def test_a_link_inside_the_folder_is_still_read(tmp_path: Path) -> None:
     tpl = _project(tmp_path)
     text = (DEFAULTS / "CMakeLists.txt.j2").read_text() + "# team override\n"

@@ -51,6 +51,52 @@ def test_an_overflowing_inertia_is_a_located_error(tmp_path: Path) -> None:
     assert "big.yaml:10:" in r.stderr and "error[INER032]" in r.stderr and "hint:" in r.stderr, r.stderr
 
 
+@pytest.mark.parametrize("shape", ["sphere: {diameter: 1e200 m}", "cylinder: {diameter: 1e200 m, length: 1e200 m}"])
+def test_an_overflowing_round_shape_is_a_located_error(tmp_path: Path, shape: str) -> None:
+    # found by the independent check of issue 34: r**2 raised OverflowError where r*r is inf
+    text = BIG.replace("box: {size: [1e200 m, 1e200 m, 1e200 m]}", shape).replace("mass: 1e300 kg", "mass: 1 kg")
+    (tmp_path / "big.yaml").write_text(text)
+    for command in ("validate", "poses"):
+        r = cli(command, "big.yaml", cwd=tmp_path)
+        assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+        assert "error[" in r.stderr
+
+
+# a sphere of radius 1e200 m (no plausibility to widen in a URDF), and a tensor of 1e308 entries
+HUGE_SPHERE = (
+    '<robot name="r"><link name="a"><inertial>{unit}</inertial>'
+    '<collision><geometry><sphere radius="1e200"/></geometry></collision></link></robot>'
+)
+HUGE_TENSOR = (
+    '<robot name="r"><link name="a"><inertial><mass value="1"/>'
+    '<inertia ixx="1e308" iyy="1e308" izz="1e308" ixy="1e308" ixz="0" iyz="0"/></inertial></link></robot>'
+)
+
+
+@pytest.mark.parametrize("urdf", ["sphere", "tensor"])
+@pytest.mark.parametrize("command", ["audit", "frames", "faults"])
+def test_values_near_the_float_limit_in_a_urdf_are_no_traceback(tmp_path: Path, urdf: str, command: str) -> None:
+    text = HUGE_SPHERE.replace("{unit}", '<mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>')
+    (tmp_path / "r.urdf").write_text(text if urdf == "sphere" else HUGE_TENSOR)
+    r = cli(command, "r.urdf", cwd=tmp_path)  # the suite runs without a findings cache
+    assert r.returncode in (0, 1, 2) and "Traceback" not in r.stderr, r.stderr
+
+
+def test_a_sweep_of_a_link_beyond_the_floats_says_so(tmp_path: Path) -> None:
+    (tmp_path / "far.urdf").write_text(URDF_FAR)
+    r = cli("sweep", "far.urdf", cwd=tmp_path)
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    assert "info[SWEEP003]: j1 is not swept: a link it moves lies beyond the float range" in r.stderr
+
+
+def test_a_simulation_of_a_link_beyond_the_floats_is_a_finding(tmp_path: Path) -> None:
+    pytest.importorskip("mujoco")
+    (tmp_path / "far.urdf").write_text(URDF_FAR)
+    r = cli("simulate", "far.urdf", cwd=tmp_path)
+    assert r.returncode in (1, 2) and "Traceback" not in r.stderr, r.stderr
+    assert "error[SIM" in r.stderr
+
+
 def test_principal_moments_of_a_non_finite_tensor_are_nan() -> None:
     t = Inertia(float("inf"), 1.0, 0.0, float("inf"), 0.0, 1.0)
     assert all(v != v for v in principal.moments(t))  # nan, not LAPACK's LinAlgError

@@ -105,6 +105,17 @@ def test_control_refuses_a_linked_recording_folder(project: Path, tmp_path: Path
     _refused(project, out, out / "control_run")
 
 
+def test_control_refuses_a_link_inside_the_recording_folder(project: Path, tmp_path: Path) -> None:
+    # found by the independent check of issue 34: the link was replaced, not refused
+    out = tmp_path / "ev"
+    (out / "control_run").mkdir(parents=True)
+    victim = tmp_path / "victim.mcap"
+    victim.write_text("keep me\n")
+    (out / "control_run" / "control_run.mcap").symlink_to(victim)
+    _refused(project, out, out / "control_run" / "control_run.mcap")
+    assert victim.read_text() == "keep me\n"
+
+
 def test_control_refuses_a_linked_evidence_file(project: Path, tmp_path: Path) -> None:
     out = tmp_path / "ev"
     out.mkdir()

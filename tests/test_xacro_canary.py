@@ -184,6 +184,10 @@ def passthrough_cases(canary: Path) -> dict[str, str]:
         "dollar-dollar": f'<gazebo a="${ea}" b="$${va}"><c>$${e}</c>$$</gazebo>',
         "character-reference": "<gazebo><a>&#36;{x}</a><b c='&#36;&#40;eval 1&#41;'/></gazebo>",
         "processing-instruction": f"<gazebo><?pi {e} ?><a/></gazebo>",
+        # outside the element (found by the independent check of issue 34): validated too
+        "xml-declaration": '<?xml version="1.0"?><gazebo/>',
+        "stylesheet-before": '<?xml-stylesheet href="x"?><gazebo/>',
+        "eval-comments-before": f"<!-- xacro:eval-comments --><!-- {e} --><gazebo/>",
         "cdata": f"<gazebo><![CDATA[{e}]]></gazebo>",
         "xacro-element": f'<gazebo xmlns:xacro="{XACRO_NS}"><xacro:if value="true"><a>{e}</a></xacro:if></gazebo>',
         "xacro-include": f'<gazebo xmlns:xacro="{XACRO_NS}"><xacro:include filename="{canary}.xacro"/></gazebo>',
@@ -196,6 +200,9 @@ def passthrough_cases(canary: Path) -> dict[str, str]:
 
 REFUSED = {
     "processing-instruction",  # pinocchio's urdfdom (tinyxml2) refuses the URDF
+    "xml-declaration",
+    "stylesheet-before",
+    "eval-comments-before",
     "eval-comments",
     "eval-comments-nested",
     "cdata",

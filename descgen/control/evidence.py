@@ -61,6 +61,11 @@ def _refuse_unsafe(folder: Path, names: list[str]) -> None:
             kind = output_kind(entry)
             if name == "control_run":
                 if kind == "a directory":
+                    # the recording's own files too: a link there is refused, not replaced
+                    for inner in sorted(entry.iterdir()):
+                        inner_kind = output_kind(inner)
+                        if inner_kind is not None:
+                            bad.append((inner, inner_kind))
                     continue
                 if kind is None and entry.exists():
                     kind = "a regular file"

@@ -56,6 +56,14 @@ def problem(xml: str) -> str | None:
         return f"is not one well-formed XML element ({exc.msg})"
     if not isinstance(e.tag, str) or (etree.QName(e).localname in OWN_TAGS and etree.QName(e).namespace is None):
         return f"is a <{e.tag}>, which the spec writes itself"
+    # what stands before or after the element is copied too: an XML declaration or a processing
+    # instruction there makes the URDF one that pinocchio's parser refuses (GEN070 at generate)
+    if xml.lstrip().startswith("<?") or any(
+        isinstance(x, etree._ProcessingInstruction) for x in (*e.itersiblings(preceding=True), *e.itersiblings())
+    ):
+        return "holds an XML declaration or processing instruction outside its element"
+    if any(EVAL_COMMENTS in (x.text or "") for x in (*e.itersiblings(preceding=True), *e.itersiblings())):
+        return f"holds a comment with '{EVAL_COMMENTS}', which makes xacro evaluate the comments after it"
     for x in e.iter():
         if isinstance(x, etree._Comment):
             if EVAL_COMMENTS in (x.text or ""):

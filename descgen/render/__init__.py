@@ -71,7 +71,8 @@ class FolderLoader(jinja2.BaseLoader):
     any other input (docs/security.md): a template must be a regular file inside the folder, links
     resolved, of at most 1 MiB, else GEN065 at the template (exit 2), before a byte is rendered. A
     link to /proc/self/environ would otherwise render the environment into the package, and a FIFO
-    block. A name that is not in the folder falls through to the defaults."""
+    block. Only ``*.j2`` files directly in the folder are templates. A name that is not in the
+    folder falls through to the defaults."""
 
     def __init__(self, folder: Path) -> None:
         self.folder = folder
@@ -79,7 +80,12 @@ class FolderLoader(jinja2.BaseLoader):
     def get_source(self, environment: jinja2.Environment, template: str) -> tuple[str, str, Any]:
         from jinja2.loaders import split_template_path  # refuses ".." and absolute names
 
-        path = self.folder.joinpath(*split_template_path(template))
+        parts = split_template_path(template)
+        # a template is a file of the folder named *.j2, as descgen's own are: not any file a
+        # spec's folder happens to hold ({% include ".git/config" %} with ``templates: ..``)
+        if len(parts) != 1 or not parts[0].endswith(".j2") or parts[0].startswith("."):
+            raise jinja2.TemplateNotFound(template)
+        path = self.folder.joinpath(*parts)
         if not os.path.lexists(path):
             raise jinja2.TemplateNotFound(template)
         data = read_in_folder(path, self.folder, "template", MAX_TEMPLATE_BYTES, code="GEN065", codes=_TEMPLATE_CODES)

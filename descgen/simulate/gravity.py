@@ -117,7 +117,10 @@ def damped(model: Any, data: Any, held: list[Servo]) -> list[Servo]:
         mujoco.mj_fullM(model, data, full)
     # the inertia a joint's servo feels with every other joint free: 1 / (M^-1)_jj, never more
     # than M_jj (every other joint locked); damping against M_jj lets coupled modes ring
-    apparent = 1.0 / np.maximum(np.diag(np.linalg.pinv(full)), 1e-300)
+    if np.isfinite(full).all():
+        apparent = 1.0 / np.maximum(np.diag(np.linalg.pinv(full)), 1e-300)
+    else:  # a pose past the floats (a joint offset of 1e308 m): no damping; the run shows SIM010
+        apparent = np.zeros(model.nv)
     out = []
     for s in held:
         inertia = float(apparent[_joint_addr(model, s.joint)[1]])

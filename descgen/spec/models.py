@@ -54,7 +54,8 @@ identifiers (see reference/conventions.md)."""
 # from them (render/views.py). '$' is refused: the Xacro writes names where xacro evaluates '$'.
 ELEMENT_NAME_PATTERN = r"^[^/$\s\x00-\x1f\x7f-\x9f][^$\s\x00-\x1f\x7f-\x9f]*$"
 _NOT_IN_NAME = re.compile(
-    r"[$\s\x00-\x1f\x7f-\x9f\u2028\u2029\u200b-\u200f\u202a-\u202e\u2060-\u206f\ufeff\ud800-\udfff\ufffe\uffff]"
+    # U+061C, the Arabic letter mark, is a bidi control too (Unicode's Bidi_Control set)
+    r"[$\s\x00-\x1f\x7f-\x9f\u061c\u2028\u2029\u200b-\u200f\u202a-\u202e\u2060-\u206f\ufeff\ud800-\udfff\ufffe\uffff]"
 )
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -186,8 +187,14 @@ def compute(robot: Robot, settings: Settings = Settings(), progress: Callable[[s
             empty.append(NoRange(j, g))
             continue
         left = max(MAX_CHECKS - checks, 0) // len(g[0])
-        motions.append(analyse(robot, j, g[0], g[1], values, geometry, disabled, left))
-        checks += len(motions[-1].pairs) * len(g[0])
+        motion = analyse(robot, j, g[0], g[1], values, geometry, disabled, left)
+        if not all(math.isfinite(c * 1000.0) for m in motion.moved for c in m.displacement):
+            # a link past the float range in millimetres, as it is printed (a joint offset near
+            # 1e308 m): no direction to say
+            empty.append(NoRange(j, "a link it moves lies beyond the float range (a joint offset near 1e308)"))
+            continue
+        motions.append(motion)
+        checks += len(motion.pairs) * len(g[0])
     too_many = collision.too_large(robot)
     over = any(m.pairs_over for m in motions) or bool(too_many)
     key = "" if over else memo_key(robot, state, values, settings.steps, disabled)

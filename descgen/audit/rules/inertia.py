@@ -244,7 +244,7 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
         t = i.inertia
         half_trace = (t.ixx + t.iyy + t.izz) / 2
         r_min = (3 * i.mass / (4 * math.pi * DENSEST)) ** (1 / 3)
-        least = 0.6 * i.mass * r_min**2
+        least = 0.6 * i.mass * r_min * r_min
         if half_trace < least * (1 - 1e-9):
             yield at(
                 "INER006",
