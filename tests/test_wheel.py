@@ -24,10 +24,8 @@ from tests.helpers import ROOT, user_project
 pytestmark = [pytest.mark.slow, pytest.mark.e2e]
 
 
-@pytest.fixture(scope="module")
-def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def _build(work: Path) -> Path:
     """The wheel, built from a copy of what the sdist is made of (the repository stays clean)."""
-    work = tmp_path_factory.mktemp("build")
     src = work / "src"
     shutil.copytree(ROOT / "descgen", src / "descgen", ignore=shutil.ignore_patterns("__pycache__"))
     for name in ("pyproject.toml", "README.md"):
@@ -45,10 +43,8 @@ def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return built
 
 
-@pytest.fixture(scope="module")
-def venv(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+def _install(wheel: Path, folder: Path) -> Path:
     """A fresh venv with the wheel and its declared dependencies; its bin folder."""
-    folder = tmp_path_factory.mktemp("venv") / "venv"
     base = getattr(sys, "_base_executable", sys.executable)
     subprocess.run([base, "-m", "venv", str(folder)], check=True, timeout=300)
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
@@ -63,7 +59,7 @@ def venv(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     return folder / "bin"
 
 
-def test_the_wheel_holds_every_package_and_the_templates(wheel: Path) -> None:
+def _holds_every_package_and_the_templates(wheel: Path) -> None:
     names = set(zipfile.ZipFile(wheel).namelist())
     packages = sorted(p.parent.relative_to(ROOT).as_posix() for p in (ROOT / "descgen").rglob("__init__.py"))
     assert [p for p in packages if f"{p}/__init__.py" not in names] == []
@@ -81,7 +77,7 @@ def _run(bin_dir: Path, cwd: Path, *args: str | Path) -> subprocess.CompletedPro
     )
 
 
-def test_installed_descgen_is_the_wheel(venv: Path, tmp_path: Path) -> None:
+def _installed_descgen_is_the_wheel(venv: Path, tmp_path: Path) -> None:
     code = "import descgen, sys; print(descgen.__file__)"
     where = subprocess.run([str(venv / "python"), "-c", code], capture_output=True, text=True, cwd=tmp_path)
     assert where.returncode == 0, where.stderr
@@ -121,7 +117,7 @@ COMMANDS: list[tuple[list[str], int]] = [
 ]
 
 
-def test_every_command_runs_on_the_example(venv: Path, tmp_path: Path) -> None:
+def _every_command_runs_on_the_example(venv: Path, tmp_path: Path) -> None:
     project = user_project(tmp_path)
     for args, expected in COMMANDS:
         done = _run(venv, project, *args)
@@ -131,7 +127,7 @@ def test_every_command_runs_on_the_example(venv: Path, tmp_path: Path) -> None:
     assert "SIM009" in _run(venv, project, "simulate", EXAMPLE).stderr
 
 
-def test_import_and_audit_a_real_robot(venv: Path, tmp_path: Path) -> None:
+def _import_and_audit_a_real_robot(venv: Path, tmp_path: Path) -> None:
     corpus = share()
     assert corpus is not None, "example-robot-data is in the test extra"
     robots = corpus / "example-robot-data" / "robots" / "ur_description"
@@ -152,3 +148,15 @@ def test_import_and_audit_a_real_robot(venv: Path, tmp_path: Path) -> None:
         assert "Traceback" not in done.stderr, (args, done.stderr[-3000:])
         assert done.returncode == expected, (args, done.returncode, done.stderr[-3000:])
     assert (project / "generated" / "ur5_description" / "package.xml").is_file()
+
+
+def test_the_wheel_installs_and_runs_every_command(tmp_path: Path) -> None:
+    """One test, so one process builds and installs the wheel once (about a minute)."""
+    wheel = _build(tmp_path / "build")
+    _holds_every_package_and_the_templates(wheel)
+    venv = _install(wheel, tmp_path / "venv" / "venv")
+    for step, check in enumerate(
+        (_installed_descgen_is_the_wheel, _every_command_runs_on_the_example, _import_and_audit_a_real_robot)
+    ):
+        (tmp_path / f"step{step}").mkdir()
+        check(venv, tmp_path / f"step{step}")
