@@ -178,6 +178,15 @@ def user_project(tmp_path: Path, name: str = "robot_ws") -> Path:
     return project
 
 
+def string_leaves(node: object, path: tuple[object, ...] = ()) -> list[tuple[object, ...]]:
+    """The path of every string in a loaded YAML document (keys and list indices)."""
+    if isinstance(node, dict):
+        return [p for k, v in node.items() for p in string_leaves(v, (*path, k))]
+    if isinstance(node, list):
+        return [p for i, v in enumerate(node) for p in string_leaves(v, (*path, i))]
+    return [path] if isinstance(node, str) else []
+
+
 def set_at(data: object, path: tuple[object, ...], value: object) -> None:
     """``data[path[0]][path[1]]... = value`` in a loaded YAML document."""
     for key in path[:-1]:

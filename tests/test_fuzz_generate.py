@@ -27,7 +27,7 @@ from lxml import etree
 from descgen.findings import InputError
 from descgen.generate import plan
 
-from .helpers import EXAMPLE_TEXT, ROOT, get_at, set_at
+from .helpers import EXAMPLE_TEXT, ROOT, get_at, set_at, string_leaves
 
 EXAMPLE = yaml.safe_load(EXAMPLE_TEXT)
 
@@ -56,15 +56,7 @@ PAYLOADS = [
 ]
 
 
-def _string_leaves(node: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
-    if isinstance(node, dict):
-        return [p for k, v in node.items() for p in _string_leaves(v, (*path, k))]
-    if isinstance(node, list):
-        return [p for i, v in enumerate(node) for p in _string_leaves(v, (*path, i))]
-    return [path] if isinstance(node, str) else []
-
-
-LEAVES = _string_leaves(EXAMPLE)
+LEAVES = string_leaves(EXAMPLE)
 
 
 def _outputs_parse(files: dict[str, str]) -> dict[str, list[str]]:

@@ -32,7 +32,7 @@ from lxml import etree
 from descgen.findings import InputError
 from descgen.generate import plan
 
-from .helpers import EXAMPLE_TEXT, ROOT, cli, get_at, set_at
+from .helpers import EXAMPLE_TEXT, ROOT, cli, get_at, set_at, string_leaves
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 
@@ -412,14 +412,6 @@ def test_xacro_document_expands_back_to_itself(canary: Path, tmp_path: Path) -> 
 # --------------------------------------------------------------------------- the fuzzer
 
 
-def _string_leaves(node: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
-    if isinstance(node, dict):
-        return [p for k, v in node.items() for p in _string_leaves(v, (*path, k))]
-    if isinstance(node, list):
-        return [p for i, v in enumerate(node) for p in _string_leaves(v, (*path, i))]
-    return [path] if isinstance(node, str) else []
-
-
 def _extended_example() -> dict[str, Any]:
     """The example spec with every free-text field the example leaves out filled in: a
     disabled pair's reason, a pass-through element, a visual's name, a texture, a hardware
@@ -443,7 +435,7 @@ def test_fuzz_hostile_text_never_runs_in_the_real_xacro(canary: Path, tmp_path: 
     line or never runs when xacro expands the packages."""
     rng = random.Random(34)
     base = _extended_example()
-    leaves = _string_leaves(base)
+    leaves = string_leaves(base)
     # free text (what no name pattern guards) above all, and a few of the other strings
     free = [p for p in leaves if p[-1] in FREE_TEXT or p[-2:-1] == ("source",) or p[:1] == ("materials",)]
     chosen = rng.sample(free, k=min(12, len(free)))
