@@ -97,7 +97,11 @@ def _worker_start(parent: int) -> None:
     """In each worker: SIGTERM ends it at once (the parent's terminate()), not through the
     parent's handler it was forked with, and the signals held while it was forked are let through.
     And it dies with its parent: a parent killed with SIGKILL (the OOM killer, ``kill -9``, a CI
-    runner's hard timeout) runs no clean-up, and its workers would wait on their pipe forever."""
+    runner's hard timeout) runs no clean-up, and its workers would wait on their pipe forever.
+    Ctrl-C is the parent's to handle (it terminates the workers): a worker ignores SIGINT, so
+    one that reaches a worker still starting (a terminal sends it to the whole group) is dropped
+    instead of raising KeyboardInterrupt inside the pool's initializer, which printed a traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _die_with(parent)
     interruptions.let_through()
