@@ -13,7 +13,7 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import TYPE_CHECKING, NoReturn
 
 from . import __version__, cli_format, collector, report
 from . import cli_types as types
@@ -315,34 +315,16 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
     show = wanted(args.format == "text")
     outcomes = audit_each(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
     errors = [f for _, found in outcomes for f in found]
-    readable = [(bag, rep) for bag, (rep, _) in zip(args.bag, outcomes, strict=True) if rep is not None]
-    if errors and not readable:
+    reps = [rep for rep, _ in outcomes if rep is not None]
+    if errors and not reps:
         raise InputError(errors)  # nothing to report: exit 2, as for one recording
-    bags_ok, reps = [b for b, _ in readable], [r for _, r in readable]
     if args.format == "json":
-        doc = cli_format.tf_audit_json(bags_ok, reps) if not errors else _tf_audit_json_partial(args.bag, outcomes)
-        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+        sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, outcomes), indent=2) + "\n")
     else:
-        if not errors:
-            sys.stdout.write(cli_format.tf_audit_texts(bags_ok, reps, args.target))
-        else:  # several recordings, each under its name, as when all are readable
-            sys.stdout.write(
-                "".join(f"== {report.printable(b)}\n" + cli_format.tf_audit_text(r, args.target) for b, r in readable)
-            )
+        sys.stdout.write(cli_format.tf_audit_texts(args.bag, outcomes, args.target))
     if errors:  # the readable recordings are reported above; the unreadable one is exit 2
         raise InputError(errors)
     return EXIT_FAILED if any(rep.lookups - rep.counts["ok"] for rep in reps) else EXIT_OK
-
-
-def _tf_audit_json_partial(bags: Sequence[str], outcomes: Sequence[tuple[Any, Sequence[Finding]]]) -> dict[str, Any]:
-    """Several recordings, some unreadable: each readable one's report, and for the others the
-    input errors that kept them from one (``{"errors": [finding, ...]}``)."""
-    return {
-        "recordings": {
-            bag: rep.as_dict() if rep is not None else {"errors": [f.as_dict() for f in found]}
-            for bag, (rep, found) in zip(bags, outcomes, strict=True)
-        }
-    }
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:

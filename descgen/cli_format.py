@@ -12,6 +12,7 @@ from .report import printable
 
 if TYPE_CHECKING:
     from .faults import Result
+    from .findings import Finding
     from .frames import Edge
     from .model import Robot
     from .poses import Row
@@ -162,18 +163,31 @@ def tf_audit_text(rep: Report, target: str) -> str:
     return "".join(line + "\n" for line in lines)
 
 
-def tf_audit_texts(bags: Sequence[str], reps: Sequence[Report], target: str) -> str:
-    """One recording's report as before; several, each under its name."""
-    if len(reps) == 1:
-        return tf_audit_text(reps[0], target)
-    return "".join(f"== {printable(bag)}\n" + tf_audit_text(rep, target) for bag, rep in zip(bags, reps, strict=True))
+def tf_audit_texts(
+    bags: Sequence[str], outcomes: Sequence[tuple[Report | None, Sequence[Finding]]], target: str
+) -> str:
+    """One recording's report as before; several, each readable one under its name (an
+    unreadable one is an input error, printed as a finding)."""
+    if len(outcomes) == 1 and outcomes[0][0] is not None:
+        return tf_audit_text(outcomes[0][0], target)
+    return "".join(
+        f"== {printable(bag)}\n" + tf_audit_text(rep, target)
+        for bag, (rep, _) in zip(bags, outcomes, strict=True)
+        if rep is not None
+    )
 
 
-def tf_audit_json(bags: Sequence[str], reps: Sequence[Report]) -> dict[str, Any]:
-    """One recording's report as before; several as {"recordings": {folder: report}}."""
-    if len(reps) == 1:
-        return reps[0].as_dict()
-    return {"recordings": {bag: rep.as_dict() for bag, rep in zip(bags, reps, strict=True)}}
+def tf_audit_json(bags: Sequence[str], outcomes: Sequence[tuple[Report | None, Sequence[Finding]]]) -> dict[str, Any]:
+    """One recording's report as before; several as {"recordings": {folder: report}}, an
+    unreadable one as {"errors": [finding, ...]} in its place."""
+    if len(outcomes) == 1 and outcomes[0][0] is not None:
+        return outcomes[0][0].as_dict()
+    return {
+        "recordings": {
+            bag: rep.as_dict() if rep is not None else {"errors": [f.as_dict() for f in found]}
+            for bag, (rep, found) in zip(bags, outcomes, strict=True)
+        }
+    }
 
 
 def control_text(written: Sequence[str], folder: object, verdict: dict[str, Any]) -> str:

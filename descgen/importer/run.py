@@ -311,18 +311,22 @@ def _refuse_too_large(robot: m.Robot, shown: str, text: str | None = None) -> No
         size = len(text.encode("utf-8"))
         why = f"its spec would be {size:,} bytes, more than the {yamlsource.MAX_BYTES:,} validate reads"
     if why:
-        raise InputError(
-            [
-                _finding(
-                    "IMP035",
-                    "error",
-                    f"the description is too large to import: {why}",
-                    "split the description into smaller robots; nothing was written",
-                    "import",
-                    Where(shown, 1, 1),
-                )
-            ]
-        )
+        raise _too_large(why, Where(shown, 1, 1))
+
+
+def _too_large(why: str, where: Where) -> InputError:
+    return InputError(
+        [
+            _finding(
+                "IMP035",
+                "error",
+                f"the description is too large to import: {why}",
+                "split the description into smaller robots; nothing was written",
+                "import",
+                where,
+            )
+        ]
+    )
 
 
 def _with_variants(ctl: control.Imported, hv: Variants, where: Where) -> control.Imported:
@@ -557,18 +561,7 @@ def _proved(imported: Imported) -> Outcome:
     except InputError as exc:
         if any(f.code == "YAML003" for f in exc.findings):  # the spec's size, not the description's defect
             bound = next(f for f in exc.findings if f.code == "YAML003")
-            raise InputError(
-                [
-                    _finding(
-                        "IMP035",
-                        "error",
-                        f"the description is too large to import: its spec has {bound.message}",
-                        "split the description into smaller robots; nothing was written",
-                        "import",
-                        Where(imported.spec_name),
-                    )
-                ]
-            ) from None
+            raise _too_large(f"its spec has {bound.message}", Where(imported.spec_name)) from None
         invalid = [
             dataclasses.replace(
                 f,
