@@ -29,6 +29,8 @@ lint: setup
 	$(BIN)/ruff check descgen tests benchmarks scripts
 	$(BIN)/ruff format --check descgen tests benchmarks scripts
 	$(BIN)/mypy descgen
+	$(BIN)/lint-imports
+	$(PY) scripts/check_import_cycles.py
 
 # the system tools the tests use as oracles (check_urdf, tf2, Graphviz, a headless Chromium),
 # installed with apt-get where missing (sudo when not root); where that is impossible it says

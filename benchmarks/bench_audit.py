@@ -3,7 +3,7 @@ same files, one process each (the anchor), and the audit of a synthetic 1000-lin
 
 Rows (each corpus row is one fresh Python process that imports descgen and audits all 69
 URDFs with their SRDFs; its meshes, ~620 distinct files, 350 MB, are resolved and measured):
-- cold cache: the persistent mesh-facts cache (descgen/mesh_cache.py) is empty, so every mesh
+- cold cache: the persistent mesh-facts cache (descgen/meshes/cache.py) is empty, so every mesh
   is parsed (binary STL with numpy, DAE/OBJ/ASCII STL with trimesh/pycollada); wall time of
   the whole process, and of its first pass alone.
 - warm mesh cache: a second fresh process on the same cache folder, with the audit's findings
@@ -57,7 +57,7 @@ from synthetic import chain_spec  # noqa: E402
 LOOP = r"""
 import json, os, shutil, sys, time
 sys.path.insert(0, sys.argv[1])
-from descgen.audit.inputs import Options, audit
+from descgen.read.description import Options, audit
 from tests.corpus import descriptions, share
 corpus, root = descriptions(), share()
 if len(sys.argv) > 3:  # one description "edited": its findings entry gone, every other one kept
@@ -181,9 +181,9 @@ def _cli_rows(urdfs: list[Path], check: Anchor) -> None:
 
 def main() -> None:
     from descgen.audit import run
-    from descgen.readers.urdf import read_urdf_text
+    from descgen.audit.spec import load_spec_text
+    from descgen.read.urdf import read_urdf_text
     from descgen.render import render_package
-    from descgen.spec import load_spec_text
     from tests.corpus import descriptions
 
     tool = shutil.which("check_urdf")

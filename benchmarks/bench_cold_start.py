@@ -6,7 +6,7 @@ time and CPU time (user + system of the process and its children: check_urdf, do
 printed; CPU is steadier on a loaded machine, and the goal (issue 17: validate <= 6x, check <=
 5x xacro) is stated in CPU. Caches are warm, and that is said in the output: the OS file cache
 (after the uncounted run), descgen's pint definition cache and compiled templates, Python's
-bytecode caches, and descgen's result cache (descgen/result_cache.py: the Xacro expansions,
+bytecode caches, and descgen's result cache (descgen/infra/result_cache.py: the Xacro expansions,
 catkin_pkg's verdicts and the sweep table of an unchanged package). This is the cost a
 pre-commit hook pays on every commit; a first run after install pays more. ``check, result
 cache empty`` is the same check with that one cache emptied before every run: what a CI job

@@ -22,8 +22,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import corpus_matrix as cm
 from rows import row
 
-from descgen.spec import load_spec
-from descgen.sweep.contacts import pinocchio_urdf
+from descgen.audit.spec import load_spec
+from descgen.physics.sweep.contacts import pinocchio_urdf
 
 SPEC = cm.ROOT / "specs" / "warehouse_arm.yaml"
 

@@ -17,12 +17,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from rows import header, row
 
-from descgen.control.evidence import write_evidence
-from descgen.control.manager import Point
-from descgen.control.run import run
-from descgen.control.system import Plant
-from descgen.control.trajectory import Trajectory
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.commands.control.evidence import write_evidence
+from descgen.commands.control.manager import Point
+from descgen.commands.control.run import run
+from descgen.commands.control.system import Plant
+from descgen.commands.control.trajectory import Trajectory
 
 ROOT = Path(__file__).resolve().parents[1]
 SECONDS = 60.0

@@ -11,7 +11,7 @@ Figures are CPU seconds (user + system of the process and its children: check_ur
 median of REPEAT fresh processes (3 at 1000 links) after one uncounted run; CPU is steadier than
 wall time on a shared machine. descgen's caches live in a folder of this run (DESCGEN_CACHE_DIR):
 pint definitions, compiled templates and mesh facts are warm, as after any first run. The result
-cache (descgen/result_cache.py) is said per row:
+cache (descgen/infra/result_cache.py) is said per row:
 
 - ``generate`` runs with it empty: an edited spec gives new files, so nothing in it applies;
 - ``check after generate`` runs with what generate left in it: the pre-commit flow (edit the
@@ -43,7 +43,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rows import header, row
 from synthetic import chain_spec
 
-from descgen.generate import generate
+from descgen.commands.generate import generate
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
@@ -148,7 +148,7 @@ def sandbox_row(label: str, path: Path, repeat: int) -> None:
     least 3). The expansion runs on a copy: it writes the file's skeleton in its place."""
     import xacro
 
-    from descgen.checks.xacro_expand import expand_scratch
+    from descgen.prove.xacro_expand import expand_scratch
 
     def cpu(fn: Callable[[], object]) -> float:
         times = []

@@ -25,9 +25,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from rows import row  # noqa: E402
 
-from descgen.audit.inputs import Options  # noqa: E402
-from descgen.findings import InputError  # noqa: E402
-from descgen.importer.run import ImportOptions, import_description  # noqa: E402
+from descgen.commands.importer.run import ImportOptions, import_description  # noqa: E402
+from descgen.core.findings import InputError  # noqa: E402
+from descgen.read.description import Options  # noqa: E402
 from tests.corpus import descriptions, share  # noqa: E402
 
 

@@ -32,7 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rows import header, row
 from synthetic import chain_spec
 
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
@@ -77,7 +77,7 @@ def main() -> None:
             mine = cpu(lambda p=path: load_spec(p, rules=False), repeat)  # type: ignore[misc]
             anchor = cpu(lambda t=text: yaml.load(t, Loader=yaml.CSafeLoader), repeat)  # type: ignore[misc]
             row(f"load {label} (spec -> model), CPU", mine, anchor, "warm", anchor_name="CSafeLoader")
-    mine = cold(f"from descgen.spec import load_spec; load_spec({str(EXAMPLE)!r}, rules=False)")
+    mine = cold(f"from descgen.audit.spec import load_spec; load_spec({str(EXAMPLE)!r}, rules=False)")
     anchor = cold(f"import yaml; yaml.load(open({str(EXAMPLE)!r}).read(), Loader=yaml.CSafeLoader)")
     row("import + load the example, CPU", mine, anchor, "cold", anchor_name="python + CSafeLoader")
     print(f"load at the end {os.getloadavg()[0]:.2f}")

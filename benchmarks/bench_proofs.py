@@ -24,9 +24,9 @@ from rows import row  # noqa: E402
 COLD = """
 import time
 from pathlib import Path
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
 from descgen.render import render_package
-from descgen.checks import known_poses, urdf_roundtrip, srdf_roundtrip, ros2_control_roundtrip, controllers_roundtrip
+from descgen.prove import known_poses, urdf_roundtrip, srdf_roundtrip, ros2_control_roundtrip, controllers_roundtrip
 robot = load_spec("specs/warehouse_arm.yaml").robot
 files = render_package(robot, "specs/warehouse_arm.yaml")
 t = time.perf_counter()
@@ -37,7 +37,8 @@ print(time.perf_counter() - t)
 
 
 def main() -> None:
-    from descgen.checks import (
+    from descgen.audit.spec import load_spec
+    from descgen.prove import (
         check_urdf,
         controllers_roundtrip,
         known_poses,
@@ -46,7 +47,6 @@ def main() -> None:
         urdf_roundtrip,
     )
     from descgen.render import render_package
-    from descgen.spec import load_spec
 
     robot = load_spec(ROOT / "specs" / "warehouse_arm.yaml").robot
     files = render_package(robot, "specs/warehouse_arm.yaml")

@@ -18,9 +18,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import mujoco  # noqa: E402
 from rows import row  # noqa: E402
 
-from descgen.simulate import DEFAULT_SECONDS, Settings, simulate  # noqa: E402
-from descgen.simulate.faults import plant_all  # noqa: E402
-from descgen.spec import load_spec  # noqa: E402
+from descgen.audit.spec import load_spec  # noqa: E402
+from descgen.commands.simulate import DEFAULT_SECONDS, Settings, simulate  # noqa: E402
+from descgen.commands.simulate.faults import plant_all  # noqa: E402
 
 SPEC = ROOT / "specs" / "warehouse_arm.yaml"
 URDF = ROOT / "generated" / "warehouse_arm_description" / "urdf" / "warehouse_arm.urdf"

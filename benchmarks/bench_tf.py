@@ -54,7 +54,7 @@ from pathlib import Path
 kind, bag = sys.argv[1], Path(sys.argv[2])
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import Stores, get_typestore
-from descgen.tf import bagaudit
+from descgen.commands.tf import bagaudit
 ts = get_typestore(Stores.ROS2_JAZZY)
 if kind == "peak":
     tracemalloc.start()
@@ -91,7 +91,7 @@ def workload(frames: int = 10, samples: int = 100, lookups: int = 20000) -> dict
 
 
 def buffer_rates() -> None:
-    from descgen.tf.buffer import BufferCore
+    from descgen.commands.tf.buffer import BufferCore
 
     w = workload()
     buf = BufferCore()
@@ -134,8 +134,8 @@ def measure(kind: str, bag: Path) -> tuple[float, int, int]:
 
 
 def audit_figures(minutes: float) -> None:
-    from descgen.spec import load_spec
-    from descgen.tf import scenario
+    from descgen.audit.spec import load_spec
+    from descgen.commands.tf import scenario
 
     robot = load_spec(ROOT / "specs" / "warehouse_arm.yaml").robot
     rows = []

@@ -2,7 +2,7 @@
 UR5 and Panda, meshes included): per our reason, how many of our pairs the SRDF also disables,
 and every pair only one side disables, with how often it collides in an independent count.
 
-Our matrix: descgen.collision, 10,000 samples, seed 1, fraction 0.95, padding 0, default state
+Our matrix: descgen.physics.collision, 10,000 samples, seed 1, fraction 0.95, padding 0, default state
 zero. The independent count: pinocchio/coal with only the disagreeing pairs active, 10,000
 other samples (seed 2), so "collides in N samples" is not our matrix's own word.
 
@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import corpus_matrix as cm
 
-from descgen import collision
+from descgen.physics import collision
 
 REASONS = ("Adjacent", "Default", "Always", "Never")
 

@@ -11,9 +11,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from descgen import collision  # noqa: E402
-from descgen.model import CollisionMatrix, MatrixSettings, Robot  # noqa: E402
-from descgen.sweep.contacts import pinocchio_urdf  # noqa: E402
+from descgen.core.model import CollisionMatrix, MatrixSettings, Robot  # noqa: E402
+from descgen.physics import collision  # noqa: E402
+from descgen.physics.sweep.contacts import pinocchio_urdf  # noqa: E402
 
 SEED = 1  # our matrix (the example's seed)
 CHECK_SEED = 2  # the independent count of collisions per pair
@@ -40,8 +40,8 @@ class Corpus:
 
 
 def load(name: str) -> Corpus:
-    from descgen.audit.inputs import Options, load_description
-    from descgen.readers.srdf import read_srdf_text
+    from descgen.read.description import Options, load_description
+    from descgen.read.srdf import read_srdf_text
 
     root = share()
     assert root is not None, "example-robot-data is not installed"
@@ -58,7 +58,7 @@ def settings(seed: int = SEED, samples: int = SAMPLES) -> MatrixSettings:
 
 
 def matrix(c: Corpus, seed: int = SEED, samples: int = SAMPLES) -> CollisionMatrix:
-    """Our matrix (descgen.collision), at zero as the default state; never memoised here."""
+    """Our matrix (descgen.physics.collision), at zero as the default state; never memoised here."""
     collision._SAMPLED.clear()
     return collision.compute(c.robot, c.urdf, {}, "", settings(seed, samples))
 

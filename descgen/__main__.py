@@ -1,3 +1,3 @@
-from .cli import entry
+from descgen.cli import entry
 
 entry()

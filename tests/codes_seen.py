@@ -17,7 +17,7 @@ import uuid
 from pathlib import Path
 from typing import Any
 
-from descgen.findings import Finding
+from descgen.core.findings import Finding
 
 ENV = "DESCGEN_CODES_SEEN_DIR"
 SEEN: dict[str, str] = {}  # code -> the descgen module that made it first
@@ -67,7 +67,7 @@ def collect() -> dict[str, str]:
 
 def unregistered(seen: dict[str, str]) -> dict[str, str]:
     """The codes in ``seen`` that ``descgen rules`` cannot explain."""
-    from descgen.codes import entries
+    from descgen.audit.catalogue import entries
 
     known = {e.code for e in entries()}
     return {code: where for code, where in sorted(seen.items()) if code not in known}

@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
 
 # The suite reads nothing of the user's environment; each test sets what it needs. Caches off
-# (descgen.cache_dir.CACHE_ENV; "" switches them off, subprocesses inherit it), whatever the user
+# (descgen.core.cache_dir.CACHE_ENV; "" switches them off, subprocesses inherit it), whatever the user
 # set; not in CI (progress bars and CI-only behaviour are chosen by the tests that check them);
 # XDG folders (platformdirs, matplotlib's config) in a folder of the session's own.
 os.environ["DESCGEN_CACHE_DIR"] = ""
@@ -104,7 +104,7 @@ def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
         lines = "\n".join(f"  {code} (made in {where})" for code, where in missing.items())
         reporter = session.config.pluginmanager.get_plugin("terminalreporter")
         text = (
-            "descgen printed finding codes that are not in the catalogue (descgen/codes.py or an "
+            "descgen printed finding codes that are not in the catalogue (descgen/codes/__init__.py or an "
             f"audit @rule), so `descgen rules CODE` cannot explain them:\n{lines}"
         )
         if reporter is not None:

@@ -34,7 +34,7 @@ def descriptions() -> list[tuple[str, Path, Path | None]]:
 
 def audit_all() -> dict[str, list[object]]:
     """Findings for every corpus description (with its SRDF and the corpus as package path)."""
-    from descgen.audit.inputs import Options, audit
+    from descgen.read.description import Options, audit
 
     root = share()
     out: dict[str, list[object]] = {}

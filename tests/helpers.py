@@ -20,8 +20,8 @@ from pathlib import Path
 
 import pytest
 
-from descgen.findings import Finding, InputError
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.core.findings import Finding, InputError
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE_TEXT = (ROOT / "specs" / "warehouse_arm.yaml").read_text()
@@ -112,7 +112,7 @@ def cli(*args: str | Path, cwd: Path = ROOT, timeout: float = 300) -> Ran:
 
 
 # semantic_components/imu_sensor.hpp (jazzy): the ten interfaces an IMUSensorBroadcaster reads,
-# written out here by hand as the oracle for descgen/control/claims.py
+# written out here by hand as the oracle for descgen/physics/control_claims.py
 JAZZY_IMU_INTERFACES = [
     "orientation.x",
     "orientation.y",
@@ -130,7 +130,7 @@ JAZZY_IMU_INTERFACES = [
 def pint_si(text: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> float | str:
     """The SI value of ``text`` (or the refusal code) with descgen's pint-free path switched
     off, so pint decides: the oracle for units._simple_si."""
-    from descgen import units
+    from descgen.core import units
 
     with monkeypatch.context() as m:
         m.setattr(units, "_simple_si", lambda _text, _kind: None)

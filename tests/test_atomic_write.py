@@ -19,9 +19,10 @@ from typing import Any
 
 import pytest
 
-from descgen import generate as gen
 from descgen.cli import main
-from descgen.findings import InputError
+from descgen.commands import generate
+from descgen.core.findings import InputError
+from descgen.write import package as gen
 
 from .conftest import ROOT
 from .helpers import EXAMPLE_TEXT, plant
@@ -283,7 +284,7 @@ def test_generate_that_cannot_build_the_moveit_package_changes_neither(
 
     monkeypatch.setattr(gen, "_build", full_disk)
     with pytest.raises(InputError) as caught:
-        gen.generate(spec, project / "generated")
+        generate.generate(spec, project / "generated")
     assert caught.value.findings[0].code == "GEN045" and "nothing was changed" in caught.value.findings[0].hint
     assert {pkg: files_of(project / "generated" / pkg) for pkg in (PKG, MOVEIT)} == before
     assert not scratch(project / "generated")
@@ -515,7 +516,7 @@ def test_output_root_that_is_a_file_is_refused(tmp_path: Path) -> None:
 
 _KILL_AT = """
 import os, signal, sys
-from descgen import generate as gen
+from descgen.write import package as gen
 from descgen.cli import main
 real = gen.exchange
 def exchange(a, b):

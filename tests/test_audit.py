@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 from descgen.audit import run
-from descgen.audit.inputs import audit
-from descgen.faults import plant_all
-from descgen.model import (
+from descgen.audit.spec import load_spec
+from descgen.commands.faults import plant_all
+from descgen.core.model import (
     Box,
     Calibrated,
     Collision,
@@ -29,7 +29,7 @@ from descgen.model import (
     Robot,
     Visual,
 )
-from descgen.spec import load_spec
+from descgen.read.description import audit
 
 from .conftest import EXAMPLE, ROOT
 from .helpers import cli
@@ -215,7 +215,7 @@ def test_strict_turns_warnings_into_failures(tmp_path: Path) -> None:
 
 def test_exit_code_function() -> None:
     from descgen.cli import exit_code
-    from descgen.findings import Finding
+    from descgen.core.findings import Finding
 
     warn = Finding("NAME003", "warning", "m")
     err = Finding("TOPO001", "error", "m")
@@ -255,7 +255,7 @@ def _control_joint(name: str, **changes: object) -> Robot:
 
 
 def _separation() -> float:
-    from descgen.derive import diff_drive_geometry
+    from descgen.physics.derive import diff_drive_geometry
 
     c = next(c for c in _controllers() if c.name == "diff_drive_controller")
     return diff_drive_geometry(ROBOT, c).wheel_separation or 0.0

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from descgen.audit.inputs import Options, audit, load_description
-from descgen.faults import plant_all
-from descgen.findings import Finding
+from descgen.commands.faults import plant_all
+from descgen.core.findings import Finding
+from descgen.read.description import Options, audit, load_description
 
 from .conftest import ROOT
 from .corpus import FAULT_ROBOTS, counts, descriptions, share

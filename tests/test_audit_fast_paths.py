@@ -17,12 +17,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from descgen import extent, meshes
 from descgen.audit.rules import inertia as inertia_rules
 from descgen.audit.rules import meshes as mesh_rules
-from descgen.findings import InputError
-from descgen.meshes import MeshFacts
-from descgen.model import (
+from descgen.core.findings import InputError
+from descgen.core.model import (
     Box,
     Collision,
     Cylinder,
@@ -36,8 +34,11 @@ from descgen.model import (
     Sphere,
     Visual,
 )
-from descgen.readers import urdf as urdf_reader
-from descgen.rigid import Vec, dot, norm
+from descgen.meshes import load as meshes
+from descgen.meshes.facts import MeshFacts
+from descgen.physics import extent
+from descgen.physics.rigid import Vec, dot, norm
+from descgen.read import urdf as urdf_reader
 
 ROOT = Path(__file__).resolve().parents[1]
 

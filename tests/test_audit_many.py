@@ -56,7 +56,7 @@ def test_a_worker_keeps_the_mesh_facts_it_measured(tmp_path: Path) -> None:
         env=env,
     )
     assert done.returncode in (0, 1), done.stderr
-    (index_file,) = cache.glob("meshes*/stat-index")  # descgen/mesh_cache.py's versioned folder
+    (index_file,) = cache.glob("meshes*/stat-index")  # descgen/meshes/cache.py's versioned folder
     index = index_file.read_text()
     # the pool's processes end without atexit: the index is saved as meshes are measured
     assert "double_pendulum" in index and "simple_humanoid" in index
@@ -127,7 +127,7 @@ def _audit_in_background(paths: list[str], start_new_session: bool = False) -> s
 
 def _wait_for_workers(proc: subprocess.Popen[bytes], timeout: float = 120) -> None:
     """Until the audit's workers exist: its signal handlers are installed before they are forked
-    (descgen/workers.py), so a signal sent now meets them, however loaded the machine is."""
+    (descgen/infra/workers.py), so a signal sent now meets them, however loaded the machine is."""
     import time
 
     deadline = time.monotonic() + timeout
@@ -160,7 +160,7 @@ def test_ctrl_c_stops_the_workers_with_exit_130(tmp_path: Path) -> None:
 def test_ci_is_what_ci_services_set(ci: str | None, drawn: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     from types import SimpleNamespace
 
-    from descgen import progress
+    from descgen.infra import progress
 
     monkeypatch.setattr(progress.sys, "stderr", SimpleNamespace(isatty=lambda: True))
     if ci is None:
@@ -186,7 +186,7 @@ def _fragile(path: Path, options: object) -> tuple[list[object], bool]:
 
 def test_a_worker_that_dies_is_replaced_by_the_parent(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     # as the out-of-memory killer would: the worker auditing one file is killed outright
-    from descgen.audit import inputs
+    from descgen.read import description as inputs
 
     paths = [Path(p) for p in _paths(tmp_path)]
     want = inputs.audit_paths(paths, inputs.Options(), jobs=1)

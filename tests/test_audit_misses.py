@@ -12,11 +12,11 @@ import pytest
 from lxml import etree
 
 from descgen.audit import run
-from descgen.audit.inputs import Options, load_description
-from descgen.faults import CATALOGUE, Fault, Planting, limits_swapped, plant_all
-from descgen.findings import Finding
-from descgen.model import Robot
-from descgen.readers.urdf import read_urdf_text
+from descgen.commands.faults import CATALOGUE, Fault, Planting, limits_swapped, plant_all
+from descgen.core.findings import Finding
+from descgen.core.model import Robot
+from descgen.read.description import Options, load_description
+from descgen.read.urdf import read_urdf_text
 
 from .corpus import FAULT_ROBOTS, descriptions, share
 
@@ -221,7 +221,7 @@ def test_a_group_state_may_leave_out_a_mimic_follower(tmp_path: Path) -> None:
 
 
 def _example() -> Robot:
-    from descgen.spec import load_spec
+    from descgen.audit.spec import load_spec
 
     from .conftest import EXAMPLE
 

@@ -1,6 +1,6 @@
 """The audit's numpy-free paths (issue 17, goal 2) give what the numpy code they replaced gave.
 
-Oracles: descgen.kinematics.forward (numpy 4x4 matrices), the numpy hull formulas the
+Oracles: descgen.physics.kinematics.forward (numpy 4x4 matrices), the numpy hull formulas the
 extent module used before (every corner of every 64-gon, written out again here),
 numpy.allclose, importlib.metadata, and a fresh interpreter's sys.modules. Nothing is timed.
 """
@@ -19,9 +19,23 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from descgen import extent, kinematics, mesh_cache, rigid, transforms, zero_pose
 from descgen.audit.rules import conventions
-from descgen.model import Box, Collision, Cylinder, Inertia, Inertial, Joint, Link, Mimic, Pose, Robot, Sphere, Visual
+from descgen.core.model import (
+    Box,
+    Collision,
+    Cylinder,
+    Inertia,
+    Inertial,
+    Joint,
+    Link,
+    Mimic,
+    Pose,
+    Robot,
+    Sphere,
+    Visual,
+)
+from descgen.meshes import cache as mesh_cache
+from descgen.physics import extent, kinematics, rigid, transforms, zero_pose
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -182,7 +196,7 @@ def test_moment_by_shapes_equals_the_numpy_hulls_and_the_quick_test_never_hides_
 
 
 def test_the_span_of_a_corpus_robot_equals_the_numpy_span() -> None:
-    from descgen.audit.inputs import load_description
+    from descgen.read.description import load_description
     from tests.corpus import descriptions
 
     corpus = descriptions()
@@ -243,7 +257,7 @@ def test_a_plain_urdf_audit_imports_neither_numpy_nor_importlib_metadata(tmp_pat
         '<origin rpy="0 0 0.5"/></joint></robot>'
     )
     code = (
-        "import sys; from pathlib import Path; from descgen.audit.inputs import audit; "
+        "import sys; from pathlib import Path; from descgen.read.description import audit; "
         f"found = audit(Path({str(urdf)!r})); "
         "print(sorted({f.code for f in found}), sorted(m for m in ('numpy', 'importlib.metadata') if m in sys.modules))"
     )
@@ -281,8 +295,8 @@ def test_wheel_separation_in_plain_floats_is_the_numpy_projection(
     """derive.diff_drive_geometry (plain floats) against the projection written with numpy:
     |(t_left - t_right) . R(rpy) a / |R a||. A transposed rotation or a dropped
     normalisation fails."""
-    from descgen import derive
-    from descgen.model import Controller
+    from descgen.core.model import Controller
+    from descgen.physics import derive
 
     wheel = Link("wheel", collisions=(Collision(Cylinder(0.05, 0.02)),))
     joints = tuple(

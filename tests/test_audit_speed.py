@@ -16,9 +16,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from descgen import extent, mesh_cache, principal, rigid, transforms
-from descgen.meshes import MeshFacts, box_in_metres
-from descgen.model import Inertia
+from descgen.core.model import Inertia
+from descgen.meshes import cache as mesh_cache
+from descgen.meshes.facts import MeshFacts
+from descgen.meshes.load import box_in_metres
+from descgen.physics import extent, principal, rigid, transforms
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -111,7 +113,7 @@ def test_a_negative_zero_does_not_share_a_cache_entry_with_zero() -> None:
 
 
 def test_the_span_is_computed_once_per_robot(monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.audit.inputs import load_description
+    from descgen.read.description import load_description
     from tests.corpus import descriptions
 
     corpus = descriptions()
@@ -144,9 +146,9 @@ def test_auditing_a_plain_urdf_imports_neither_yaml_nor_the_xacro_reader(tmp_pat
         '<child link="b"/></joint><link name="b"/></robot>'
     )
     code = (
-        "import sys; from pathlib import Path; from descgen.audit.inputs import audit; "
+        "import sys; from pathlib import Path; from descgen.read.description import audit; "
         f"audit(Path({str(urdf)!r})); "
-        "print(sorted(m for m in ('yaml', 'descgen.readers.xacro_file', 'xacro') if m in sys.modules))"
+        "print(sorted(m for m in ('yaml', 'descgen.read.xacro_file', 'xacro') if m in sys.modules))"
     )
     done = subprocess.run(
         [sys.executable, "-c", code],

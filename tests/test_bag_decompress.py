@@ -1,4 +1,4 @@
-"""A compressed recording inflates to its bound, never to whatever it holds (descgen/bag_decompress.py).
+"""A compressed recording inflates to its bound, never to whatever it holds (descgen/infra/bag_decompress.py).
 
 Honest recordings compressed each way rosbag2 compresses them (MCAP chunks, each message, the
 whole file) audit exactly as the same recording uncompressed does (the oracle: tf-audit of the
@@ -22,10 +22,10 @@ from backports import zstd
 from rosbags.rosbag2 import CompressionFormat, CompressionMode, Reader, ReaderError, StoragePlugin, Writer, storage_mcap
 from rosbags.typesys import Stores, get_typestore
 
-from descgen import bag_decompress
-from descgen.findings import InputError
-from descgen.spec import load_spec
-from descgen.tf import bagaudit, scenario
+from descgen.audit.spec import load_spec
+from descgen.commands.tf import bagaudit, scenario
+from descgen.core.findings import InputError
+from descgen.infra import bag_decompress
 
 from .conftest import EXAMPLE
 
@@ -221,9 +221,9 @@ def test_chunks_held_at_once_beyond_the_bound_are_refused_before_inflating(
 
 
 def test_control_evidence_is_read_within_the_bound(plain: Path, tmp_path: Path) -> None:
-    """`check` reads the committed control recording back (descgen/control/evidence_check.py):
+    """`check` reads the committed control recording back (descgen/commands/control/evidence_check.py):
     a bomb there is refused as one in tf-audit."""
-    from descgen.control import evidence_check
+    from descgen.commands.control import evidence_check
 
     bag = tmp_path / "bag"
     _chunk_bomb(plain, bag)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from descgen.generate import check
+from descgen.commands.generate import check
 
 from .conftest import ROOT
 from .helpers import cli

@@ -1,7 +1,7 @@
 """``check`` without numpy (issue 17): the known poses (POSE010, evidence/known_poses.md, the pose
 images' record) in plain floats, proof 2's comparison without numpy on the common path, the
 collision matrix and the sweep table importing numpy only when they compute. Oracles: the numpy
-kinematics they replaced (descgen.kinematics, itself held to pinocchio), pinocchio, numpy's
+kinematics they replaced (descgen.physics.kinematics, itself held to pinocchio), pinocchio, numpy's
 ``linalg.inv`` and ``array2string``, a fresh interpreter's ``sys.modules``. Nothing is timed."""
 
 from __future__ import annotations
@@ -20,9 +20,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from descgen import kinematics, pose_images, poses, rigid, zero_pose
-from descgen.model import FrameMeasurement, Joint, KnownPose, Limit, Link, Mimic, Pose, Robot
-from descgen.spec import load_spec, load_spec_text
+from descgen.audit.spec import load_spec, load_spec_text
+from descgen.core.model import FrameMeasurement, Joint, KnownPose, Limit, Link, Mimic, Pose, Robot
+from descgen.physics import kinematics, poses, rigid, zero_pose
+from descgen.write import pose_images
 from tests.conftest import EXAMPLE, ROOT
 from tests.helpers import cli
 from tests.test_kinematics import pin_frames, random_robot
@@ -99,7 +100,7 @@ def test_known_poses_in_plain_floats_are_the_numpy_rows_and_messages(robot: Robo
 
 
 def test_the_example_s_known_poses_are_the_numpy_rows_to_the_printed_digit() -> None:
-    from descgen import display
+    from descgen.core import display
 
     for spec in (EXAMPLE, ROOT / "tests" / "data" / "mimic" / "gripper.yaml"):
         robot = load_spec(spec).robot
@@ -146,7 +147,7 @@ def test_relative_frames_agree_with_pinocchio(pin, data: st.DataObject) -> None:
 def test_inverse_is_numpy_s_inverse_of_the_4x4(
     xyz: tuple[float, float, float], rpy: tuple[float, float, float]
 ) -> None:
-    from descgen.transforms import pose_matrix
+    from descgen.physics.transforms import pose_matrix
 
     r, t = rigid.inverse(rigid.frame(xyz, rpy))
     want = np.linalg.inv(pose_matrix(xyz, rpy))
@@ -202,9 +203,9 @@ def test_the_pose_record_is_the_numpy_scene_s(monkeypatch: pytest.MonkeyPatch) -
 
 _ROUNDTRIP = """
 import json, sys
-from descgen.checks.urdf_roundtrip import compare_readback
+from descgen.prove.urdf_roundtrip import compare_readback
 from descgen.render import render_package
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
 robot = load_spec(sys.argv[1]).robot
 urdf = render_package(robot, "specs/x.yaml")[f"urdf/{robot.name}.urdf"]
 same = compare_readback(robot, urdf, "x.urdf")
@@ -218,8 +219,8 @@ print("PROBE" + json.dumps({"same": len(same), "numpy_before": before, "messages
 
 @pytest.mark.e2e
 def test_proof_2_imports_numpy_only_to_print_a_difference() -> None:
-    from descgen.readers import urdf_readback as rb
-    from descgen.transforms import pose_matrix
+    from descgen.physics.transforms import pose_matrix
+    from descgen.read import urdf_readback as rb
 
     done = subprocess.run(
         [sys.executable, "-c", _ROUNDTRIP, str(EXAMPLE)], capture_output=True, text=True, cwd=ROOT, timeout=120
@@ -319,7 +320,7 @@ def test_a_warm_check_of_the_example_imports_no_numpy(tmp_path: Path) -> None:
     st.sampled_from(["1", " 1 ", "1.0", "2", "", "x"]),
 )
 def test_whitespace_texts_compare_as_the_walk_does(spaces: list[str], text: str) -> None:
-    from descgen.xmlcompare import first_difference, parse
+    from descgen.core.xmlcompare import first_difference, parse
     from tests.test_render_readback_fast import _reference
 
     a = parse('<r><j name="a">1<o xyz="0 0 1"/></j><k/></r>')

@@ -1,4 +1,4 @@
-"""The one catalogue of finding codes (descgen/codes.py plus the audit rules).
+"""The one catalogue of finding codes (descgen/codes/__init__.py plus the audit rules).
 
 The session-wide check that every code a test saw descgen make is registered lives in
 conftest.py (tests/codes_seen.py); this file holds the static checks and the commands
@@ -15,16 +15,16 @@ from pathlib import Path
 import pytest
 
 from descgen import codes
-from descgen.audit import RULES
+from descgen.audit import RULES, catalogue
 from descgen.cli import main
-from descgen.findings import SEVERITIES, Finding, Where
-from descgen.report import sarif
+from descgen.core.findings import SEVERITIES, Finding, Where
+from descgen.output.report import sarif
 
 from . import codes_seen
 
 ROOT = Path(__file__).resolve().parents[1]
 CODE = re.compile(r"[A-Z]{3,6}\d{3}")
-ENTRIES = list(codes.entries())
+ENTRIES = list(catalogue.entries())
 KNOWN = {e.code for e in ENTRIES}
 
 
@@ -47,7 +47,7 @@ def test_the_static_scan_finds_codes_from_every_stage() -> None:
 
 def test_every_code_literal_in_descgen_is_registered() -> None:
     missing = {code: where for code, where in _literal_codes().items() if code not in KNOWN}
-    assert not missing, f"register these in descgen/codes.py (or as an audit @rule): {missing}"
+    assert not missing, f"register these in descgen/codes/__init__.py (or as an audit @rule): {missing}"
 
 
 @pytest.mark.parametrize("entry", ENTRIES, ids=[e.code for e in ENTRIES])
@@ -145,8 +145,8 @@ def test_sarif_carries_help_for_codes_that_are_not_rules() -> None:
 
 
 def test_the_session_hook_records_codes_made_by_descgen() -> None:
+    from descgen.infra.yamlsource import _fail
     from descgen.spec.quantity import error  # noqa: F401  (a descgen module that makes findings)
-    from descgen.yamlsource import _fail
 
     codes_seen.SEEN.pop("YAML004", None)
     _fail("f.yaml", "m", "h", code="YAML004")  # descgen's code makes the finding
@@ -157,4 +157,4 @@ def test_the_session_hook_records_codes_made_by_descgen() -> None:
 
 def test_the_session_check_names_an_unregistered_code() -> None:
     # the check the session runs at its end, on a planted unknown code
-    assert codes_seen.unregistered({"UNIT004": "descgen.units", "QQQ123": "descgen.x"}) == {"QQQ123": "descgen.x"}
+    assert codes_seen.unregistered({"UNIT004": "descgen.core.units", "QQQ123": "descgen.x"}) == {"QQQ123": "descgen.x"}

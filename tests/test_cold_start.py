@@ -87,7 +87,7 @@ def test_check_imports_no_heavy_library(probe: dict[str, dict[str, object]]) -> 
     assert check["code"] == 0  # the committed example is current: check really ran every proof
     loaded = set(check["modules"])  # type: ignore[call-overload]
     assert {"lxml", "xacro"} <= loaded  # the suite runs without a result cache: xacro expanded
-    # nor numpy: the sweep table check computes is plain-float kinematics (descgen/sweep/motion.py)
+    # nor numpy: the sweep table check computes is plain-float kinematics (descgen/physics/sweep/motion.py)
     assert loaded & (CHECK_HEAVY | {"numpy"}) == set()
 
 
@@ -143,7 +143,7 @@ def _calls(log: Path) -> int:
 
 
 def test_frames_svg_is_drawn_only_when_the_dot_changed(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.generate import draw_frames
+    from descgen.commands.generate import draw_frames
 
     log = _stub_dot(tmp_path, monkeypatch)
     evidence = tmp_path / "pkg" / "evidence"
@@ -168,7 +168,7 @@ def test_frames_svg_is_drawn_only_when_the_dot_changed(tmp_path: Path, monkeypat
 
 def test_frames_svg_is_not_drawn_again_for_a_new_header(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """An edited spec changes the dot file's header (its hash) and nothing dot draws."""
-    from descgen.generate import draw_frames
+    from descgen.commands.generate import draw_frames
 
     log = _stub_dot(tmp_path, monkeypatch)
     evidence = tmp_path / "pkg" / "evidence"
@@ -202,7 +202,7 @@ def test_real_dot_draws_the_same_svg_whatever_the_header(tmp_path: Path) -> None
 
 
 def test_frames_svg_is_drawn_again_by_another_dot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.generate import draw_frames
+    from descgen.commands.generate import draw_frames
 
     log = _stub_dot(tmp_path, monkeypatch)
     evidence = tmp_path / "pkg" / "evidence"
@@ -218,7 +218,7 @@ def test_frames_svg_is_drawn_again_by_another_dot(tmp_path: Path, monkeypatch: p
 def test_real_dot_draws_a_valid_stamped_svg(tmp_path: Path) -> None:
     from lxml import etree
 
-    from descgen.generate import draw_frames
+    from descgen.commands.generate import draw_frames
 
     require_tool("dot")
     evidence = tmp_path / "pkg" / "evidence"
@@ -232,7 +232,7 @@ def test_real_dot_draws_a_valid_stamped_svg(tmp_path: Path) -> None:
 
 def test_pint_is_imported_without_scipy_and_scipy_still_works_after() -> None:
     code = (
-        "import sys; from descgen import units; units.to_si('19.1 in / 2', 'length');"
+        "import sys; from descgen.core import units; units.to_si('19.1 in / 2', 'length');"
         "assert 'scipy' not in sys.modules, 'pint probed scipy';"
         "import scipy.spatial; print('ok')"
     )
@@ -244,14 +244,14 @@ def test_pint_is_imported_without_scipy_and_scipy_still_works_after() -> None:
 
 
 def _example_plan_inputs() -> tuple[dict[str, str], object, Path]:
-    from descgen.generate import plan
+    from descgen.commands.generate import plan
 
     p = plan(EXAMPLE)
     return dict(p.files), p.robot, p.package_dir
 
 
 def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
-    from descgen import checks
+    from descgen import prove as checks
 
     require_tool("check_urdf")
     files, robot, pkg = _example_plan_inputs()
@@ -282,7 +282,7 @@ def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
     ],
 )
 def test_check_urdf_judges_urdfdoms_error_stream(links: str, rejected: bool, tmp_path: Path) -> None:
-    from descgen.checks.urdfdom import check_urdf
+    from descgen.prove.urdfdom import check_urdf
 
     require_tool("check_urdf")
 
@@ -300,7 +300,7 @@ def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatc
     for its start stamp; run after them, it would stamp later), and its rejection is still reported."""
     import time
 
-    from descgen import checks
+    from descgen import prove as checks
 
     files, robot, pkg = _example_plan_inputs()
     bin_dir = tmp_path / "bin"
@@ -332,21 +332,20 @@ def test_check_urdf_runs_beside_the_in_process_proofs(tmp_path: Path, monkeypatc
     assert [f.code for f in found] == ["GEN021"] and "exit 3" in found[0].message and "planted" in found[0].message
 
 
-def test_the_urdf_rendered_alone_is_the_packages(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_urdf_rendered_alone_is_the_packages() -> None:
     """plan renders the URDF alone for the collision matrix, then the package once: the URDF
     alone is byte-identical to the package's, and rendering it computes no sweep evidence."""
+    from descgen.prove import sweep as sweep_evidence
     from descgen.render import render_package
-    from descgen.sweep import evidence as sweep_evidence
 
     _, robot, _ = _example_plan_inputs()
-    full = render_package(robot, EXAMPLE.name)  # type: ignore[arg-type]
+    full = render_package(robot, EXAMPLE.name, sweep=sweep_evidence.context)  # type: ignore[arg-type]
     rel = f"urdf/{robot.name}.urdf"  # type: ignore[attr-defined]
 
     def refuse(robot: object) -> object:
         raise AssertionError("sweep evidence computed for the URDF alone")
 
-    monkeypatch.setattr(sweep_evidence, "context", refuse)
-    alone = render_package(robot, EXAMPLE.name, only={rel})  # type: ignore[arg-type]
+    alone = render_package(robot, EXAMPLE.name, only={rel}, sweep=refuse)  # type: ignore[arg-type]
     assert alone == {rel: full[rel]}
 
 

@@ -1,4 +1,4 @@
-"""Mimic followers in the self-collision matrix (descgen/collision.py): a follower takes
+"""Mimic followers in the self-collision matrix (descgen/physics/collision.py): a follower takes
 ``multiplier * leader + offset`` in every sample and in the default state, as MoveIt's
 RobotModel::getVariableRandomPositions / getVariableDefaultPositions do (updateMimicJoints,
 moveit2 jazzy robot_model.cpp), never a value of its own. Oracles: the box geometry by hand
@@ -12,10 +12,10 @@ import re
 import numpy as np
 import pytest
 
-from descgen import collision
-from descgen.model import MatrixSettings
-from descgen.readers.urdf import read_urdf_text
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.core.model import MatrixSettings
+from descgen.physics import collision
+from descgen.read.urdf import read_urdf_text
 from tests.helpers import ROOT
 
 pin = pytest.importorskip("pinocchio")
@@ -193,7 +193,7 @@ def test_gripper_fixture_fingers_are_never_with_the_right_finger_following() -> 
     right jaw y in [qR - 10 mm, qR] with qR = -qL - 10 mm, so 2 qL + 10 mm apart over
     qL in 0..40 mm. A right finger left at zero (outside its own -50..-10 mm) touches the left
     one at y = 0, which made the pair Default."""
-    from descgen.sweep.contacts import pinocchio_urdf
+    from descgen.physics.sweep.contacts import pinocchio_urdf
 
     robot = load_spec(ROOT / "tests" / "data" / "mimic" / "gripper.yaml").robot
     urdf = pinocchio_urdf(robot)

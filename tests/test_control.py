@@ -10,12 +10,12 @@ from pathlib import Path
 
 import pytest
 
-from descgen.control.load import load_system
-from descgen.control.run import run
-from descgen.control.system import Plant
-from descgen.control.trajectory import read_trajectory
-from descgen.generate import generate
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.commands.control.load import load_system
+from descgen.commands.control.run import run
+from descgen.commands.control.system import Plant
+from descgen.commands.control.trajectory import read_trajectory
+from descgen.commands.generate import generate
 
 from .conftest import EXAMPLE, ROOT
 from .helpers import cli, plant
@@ -193,8 +193,8 @@ def test_infinite_command_takes_the_error_path() -> None:
 
 
 def test_an_oversized_or_binary_trajectory_is_named_a_trajectory(tmp_path: Path) -> None:
-    from descgen.findings import InputError
-    from descgen.yamlsource import MAX_BYTES
+    from descgen.core.findings import InputError
+    from descgen.infra.yamlsource import MAX_BYTES
 
     big = tmp_path / "big.yaml"
     big.write_bytes(b"#" * (MAX_BYTES + 1))

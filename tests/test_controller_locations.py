@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from descgen.audit.inputs import Options, audit
-from descgen.findings import Finding
+from descgen.core.findings import Finding
+from descgen.read.description import Options, audit
 
 from .conftest import ROOT
 from .helpers import cli
@@ -151,7 +151,7 @@ def test_spec_wrong_base_frame_is_one_frame004(tmp_path: Path) -> None:
 def test_an_entry_without_a_type_is_said_to_be_unchecked_not_dropped() -> None:
     """CTRL056: a top-level entry with ros__parameters and no type anywhere is reported once,
     at its key (line 8, column 1 of the text below), as info; typed controllers are still read."""
-    from descgen.readers.controllers import read_controllers_text
+    from descgen.read.controllers import read_controllers_text
 
     text = """\
 controller_manager:

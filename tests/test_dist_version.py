@@ -1,4 +1,4 @@
-"""descgen/dist_version.py reads an installed distribution's version as importlib.metadata
+"""descgen/infra/dist_version.py reads an installed distribution's version as importlib.metadata
 does (the oracle), for every distribution installed here, and evidence_hash.version answers
 exactly what importlib.metadata answers."""
 
@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from descgen import evidence_hash
-from descgen.dist_version import installed_version
+from descgen.infra import evidence_hash
+from descgen.infra.dist_version import installed_version
 from tests.conftest import ROOT
 
 
@@ -65,7 +65,7 @@ def test_validate_and_the_tool_versions_do_not_import_importlib_metadata() -> No
         "from descgen.cli import main\n"
         "main(['validate', sys.argv[1]])\n"
         "print('validate', 'importlib.metadata' in sys.modules)\n"
-        "from descgen import evidence_hash\n"
+        "from descgen.infra import evidence_hash\n"
         "evidence_hash.versions('xacro', 'lxml', 'catkin_pkg', 'pyparsing', 'numpy', 'pint', 'pydantic', 'PyYAML',"
         " 'Jinja2', 'rosbags', 'trimesh')\n"
         "print('versions', 'importlib.metadata' in sys.modules)\n"

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from descgen import evidence_page
-from descgen.generate import check
+from descgen.commands import evidence_page
+from descgen.commands.generate import check
 
 from .conftest import ROOT
 from .helpers import EXAMPLE_TEXT, cli
@@ -63,6 +63,9 @@ def test_the_page_has_nine_sections_each_with_a_verdict_and_links_that_resolve(b
     # the validation section quotes what `descgen validate` prints, word for word
     ran = cli("validate", SPEC, cwd=built)
     assert ran.stdout.strip() in page
+    # and the starter transcript holds all of it, warnings (stderr) first, as a terminal shows it
+    printed = (ran.stderr + ran.stdout).rstrip("\n")
+    assert f"$ descgen validate {SPEC}\n{printed}\n$ descgen generate" in page, printed
 
 
 def test_the_plots_and_mermaid_are_embedded(built: Path) -> None:

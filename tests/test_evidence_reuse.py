@@ -1,5 +1,5 @@
 """``descgen check`` takes the committed evidence page and control evidence without computing
-them again when their recorded inputs are unchanged (descgen/evidence_hash.py), computes them
+them again when their recorded inputs are unchanged (descgen/infra/evidence_hash.py), computes them
 exactly as before when an input changed, and never takes a result edited with its hash kept.
 
 The expensive functions are replaced by ones that raise (or count): a check that passes with
@@ -15,9 +15,10 @@ from typing import Any
 
 import pytest
 
-from descgen import evidence_hash, evidence_page
-from descgen.control import evidence_check
-from descgen.generate import check
+from descgen.commands import evidence_page
+from descgen.commands.control import evidence_check
+from descgen.commands.generate import check
+from descgen.infra import evidence_hash
 
 from .conftest import ROOT
 from .helpers import cli
@@ -169,7 +170,7 @@ def test_committed_evidence_outlives_a_python_patch_release(monkeypatch: pytest.
     # runner recomputed every piece of it, importing numpy, when the identity held the patch)
     from types import SimpleNamespace
 
-    from descgen import evidence_hash, result_cache
+    from descgen.infra import evidence_hash, result_cache
 
     monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
     monkeypatch.setattr(result_cache, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))

@@ -19,10 +19,10 @@ from pathlib import Path
 
 import pytest
 
-from descgen import result_cache
 from descgen.audit import findings_cache, registry
-from descgen.audit.inputs import Options, audit
-from descgen.findings import Finding
+from descgen.core.findings import Finding
+from descgen.infra import result_cache
+from descgen.read.description import Options, audit
 from tests.helpers import ROOT
 
 GEOM031 = ROOT / "tests" / "rules" / "GEOM031"
@@ -290,11 +290,11 @@ def test_a_hit_imports_neither_lxml_nor_the_rules(arm: Path, tmp_path: Path) -> 
         "import json, sys\n"
         "from pathlib import Path\n"
         "from descgen.audit import findings_cache\n"
-        "from descgen.audit.inputs import Options, audit\n"
+        "from descgen.read.description import Options, audit\n"
         "findings_cache.RACY_NS = 0  # the fixture's meshes were copied a moment ago\n"
         "found = audit(Path(sys.argv[1]), Options())\n"
         "print('PROBE' + json.dumps([len(found), sorted(m for m in sys.modules if m.startswith(('lxml', 'numpy', "
-        "'descgen.audit.rules', 'descgen.readers')))]))\n"
+        "'descgen.audit.rules', 'descgen.read.urdf', 'descgen.read.xacro', 'descgen.read.srdf')))]))\n"
     )
     env = {**os.environ, "DESCGEN_CACHE_DIR": str(tmp_path / "cache")}
     runs = []

@@ -1,4 +1,4 @@
-"""Forward kinematics reuses each joint's origin matrix and axis per robot (descgen/kinematics.py
+"""Forward kinematics reuses each joint's origin matrix and axis per robot (descgen/physics/kinematics.py
 _parts): the poses must be the ones the joint-by-joint chain of ``joint_transform`` gives, to the
 last bit (committed tables are rounded from them), and a robot with a changed joint must never
 be given the parts of another."""
@@ -11,9 +11,9 @@ import random
 
 import numpy as np
 
-from descgen import kinematics, mimic
-from descgen.model import Pose, Robot
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.core.model import Pose, Robot
+from descgen.physics import kinematics, mimic
 from tests.helpers import ROOT
 
 

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from descgen.audit import run
-from descgen.frames import edges
-from descgen.model import ExternalFrame, Joint, JointStateSource
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.core.model import ExternalFrame, Joint, JointStateSource
+from descgen.physics.frames import edges
 
 from .conftest import EXAMPLE, ROOT, require_tool
 from .helpers import cli

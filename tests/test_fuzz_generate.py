@@ -24,8 +24,8 @@ from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from descgen.findings import InputError
-from descgen.generate import plan
+from descgen.commands.generate import plan
+from descgen.core.findings import InputError
 
 from .helpers import EXAMPLE_TEXT, ROOT, get_at, set_at, string_leaves
 

@@ -14,9 +14,9 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen import checks
-from descgen.findings import InputError
-from descgen.generate import check, generate
+from descgen import prove as checks
+from descgen.commands.generate import check, generate
+from descgen.core.findings import InputError
 
 from .conftest import ROOT, require_tool
 from .helpers import EXAMPLE_TEXT, cli, plant, run_cli

@@ -20,12 +20,13 @@ from typing import Any
 
 import pytest
 
-from descgen import xmlcompare, yamlsource
-from descgen.checks.xacro_expand import expand
-from descgen.findings import InputError
-from descgen.readers import xacro_file, xacro_skeleton
+from descgen.audit.spec import load_spec, load_spec_text
+from descgen.core import xmlcompare
+from descgen.core.findings import InputError
+from descgen.infra import yamlsource
+from descgen.prove.xacro_expand import expand
+from descgen.read import xacro_file, xacro_skeleton
 from descgen.render import render_package
-from descgen.spec import load_spec, load_spec_text
 from descgen.spec.build import Builder
 from descgen.spec.load import from_document
 from descgen.spec.sources import cites_sources

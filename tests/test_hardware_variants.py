@@ -11,11 +11,11 @@ from pathlib import Path
 import pytest
 from lxml import etree
 
-from descgen.checks.xacro_expand import xacro_variants_match
-from descgen.findings import InputError
-from descgen.readers.xacro_file import expand
+from descgen.audit.spec import load_spec
+from descgen.core.findings import InputError
+from descgen.prove.xacro_expand import xacro_variants_match
+from descgen.read.xacro_file import expand
 from descgen.render import render_package
-from descgen.spec.load import load_spec
 from tests.helpers import EXAMPLE_TEXT, JAZZY_IMU_INTERFACES, ROOT, cli, errors_of, line_of, plant
 
 PKG = ROOT / "generated" / "warehouse_arm_description"

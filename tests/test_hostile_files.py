@@ -30,11 +30,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from descgen import cli, report, yamlsource
-from descgen.audit.inputs import kind_of, load_description
-from descgen.findings import Finding, InputError, Where
-from descgen.readers.controllers import read_controllers_text
-from descgen.safeio import read_bounded
+from descgen import cli
+from descgen.core.findings import Finding, InputError, Where
+from descgen.infra import yamlsource
+from descgen.infra.safeio import read_bounded
+from descgen.output import report
+from descgen.read.controllers import read_controllers_text
+from descgen.read.description import kind_of, load_description
 
 from .corpus import descriptions
 from .helpers import EXAMPLE_TEXT, ROOT
@@ -492,7 +494,7 @@ def test_10000_welded_links_audit_in_linear_memory(tmp_path: Path, star: bool) -
 
 
 def test_welded_bodies_share_one_set() -> None:
-    from descgen.readers.urdf import read_urdf_text
+    from descgen.read.urdf import read_urdf_text
 
     robot, _ = read_urdf_text(welded(3000, star=False).encode(), "w.urdf")
     tracemalloc.start()

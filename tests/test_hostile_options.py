@@ -21,9 +21,9 @@ from typing import Any
 
 import pytest
 
-from descgen import units
 from descgen.cli import main
-from descgen.tf import scenario
+from descgen.commands.tf import scenario
+from descgen.core import units
 
 from .conftest import EXAMPLE, ROOT
 from .helpers import errors_of, line_of, plant, run_cli
@@ -34,8 +34,8 @@ with contextlib.suppress(ImportError):
 import rosbags.rosbag2
 import rosbags.typesys  # noqa: F401
 
-import descgen.control.run
-import descgen.tf.bagaudit  # noqa: F401
+import descgen.commands.control.run
+import descgen.commands.tf.bagaudit  # noqa: F401
 
 SPEC = str(EXAMPLE)
 READY = ROOT / "specs" / "trajectories" / "ready.yaml"
@@ -628,12 +628,12 @@ def test_bad_value_of_every_option_is_exit_2_with_a_message(
 
 def test_option_values_are_checked_before_the_command_runs(monkeypatch: pytest.MonkeyPatch) -> None:
     """A bad --duration is refused while parsing: the spec is never read."""
-    import descgen.spec
+    import descgen.audit.spec
 
     def never(*_: object, **__: object) -> None:
         raise AssertionError("the spec was read before the options were checked")
 
-    monkeypatch.setattr(descgen.spec, "load_spec", never)
+    monkeypatch.setattr(descgen.audit.spec, "load_spec", never)
     code, err = _exit_of(["control", SPEC, "--trajectory", str(READY), "--duration", "-1 s"])
     assert code == 2 and err.startswith("<command line>: error[UNIT021]: --duration:"), err
     code, err = _exit_of(["tf-scenario", SPEC, "--out", "x", "--duration", "1 kg"])

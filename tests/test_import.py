@@ -12,8 +12,8 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen import units
-from descgen.importer.quantity import quantity
+from descgen.commands.importer.quantity import quantity
+from descgen.core import units
 from tests.corpus import descriptions, share
 from tests.helpers import cli
 
@@ -137,7 +137,7 @@ def test_unusable_input_exits_2_without_traceback(tmp_path: Path) -> None:
 
 
 def test_a_round_trip_difference_exits_1_and_writes_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.importer import spec as spec_writer
+    from descgen.commands.importer import spec as spec_writer
 
     real = spec_writer.quantity
 
@@ -199,8 +199,8 @@ def test_corpus_robot_generates_the_same_robot_for_pinocchio(
     assert ran.returncode == 0 and "round trip proven" in ran.stderr, ran.stderr[-2000:]
     # generate's own URDF, rendered in memory: generate itself also resolves package:// meshes,
     # which here live outside the project (site-packages)
+    from descgen.audit.spec import load_spec_text
     from descgen.render import render_package
-    from descgen.spec.load import load_spec_text
 
     robot = load_spec_text(spec.read_text(), "r.yaml", rules=False).robot
     written = tmp_path / "written.urdf"
@@ -379,7 +379,7 @@ DEFECTS = """<?xml version="1.0"?>
 
 
 def test_audit_of_the_imported_spec_finds_what_the_audit_of_the_file_finds(tmp_path: Path) -> None:
-    from descgen.audit.inputs import Options, audit
+    from descgen.read.description import Options, audit
 
     src = tmp_path / "broken.urdf"
     src.write_text(DEFECTS)  # planted: inverted limits, a non-unit axis, inertia breaking the triangle rule
@@ -394,8 +394,8 @@ def test_audit_of_the_imported_spec_finds_what_the_audit_of_the_file_finds(tmp_p
 @pytest.mark.skipif(not CORPUS, reason="example-robot-data is not installed")
 @pytest.mark.parametrize("ident", ["panda_description/urdf/panda.urdf", "tiago_description/robots/tiago.urdf"])
 def test_audit_parity_on_corpus_robots(tmp_path: Path, ident: str) -> None:
-    from descgen.audit.inputs import Options, audit
-    from descgen.importer.run import ImportOptions, import_description
+    from descgen.commands.importer.run import ImportOptions, import_description
+    from descgen.read.description import Options, audit
 
     ((_, urdf, srdf),) = [d for d in descriptions() if d[0] == ident]
     paths = (share(),)

@@ -10,11 +10,11 @@ from pathlib import Path
 import yaml
 from lxml import etree
 
-from descgen.audit.inputs import Options
-from descgen.importer import control
-from descgen.importer.run import ImportOptions, Outcome, import_description
+from descgen.audit.spec import load_spec_text
+from descgen.commands.importer import control
+from descgen.commands.importer.run import ImportOptions, Outcome, import_description
+from descgen.read.description import Options
 from descgen.render import render_package
-from descgen.spec.load import load_spec_text
 
 URDF = """<?xml version="1.0"?>
 <robot name="bot">

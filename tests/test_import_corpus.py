@@ -14,11 +14,11 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen.audit.inputs import Options
-from descgen.findings import InputError
-from descgen.importer.run import ImportOptions, import_description
-from descgen.poses import evaluate
-from descgen.spec.load import load_spec_text
+from descgen.audit.spec import load_spec_text
+from descgen.commands.importer.run import ImportOptions, import_description
+from descgen.core.findings import InputError
+from descgen.physics.poses import evaluate
+from descgen.read.description import Options
 from tests.corpus import descriptions, share
 from tests.helpers import ROOT
 

@@ -15,12 +15,12 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen.audit.inputs import Options
-from descgen.checks.semantic_roundtrip import srdf_roundtrip
-from descgen.findings import InputError
-from descgen.importer.run import ImportOptions, import_description
+from descgen.audit.spec import load_spec_text
+from descgen.commands.importer.run import ImportOptions, import_description
+from descgen.core.findings import InputError
+from descgen.prove.semantic_roundtrip import srdf_roundtrip
+from descgen.read.description import Options
 from descgen.render import render_package
-from descgen.spec.load import load_spec_text
 from tests.corpus import descriptions, share
 from tests.helpers import ROOT
 

@@ -24,10 +24,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from descgen.audit.inputs import Options
-from descgen.importer.run import ImportOptions, import_description
+from descgen.audit.spec import load_spec_text
+from descgen.commands.importer.run import ImportOptions, import_description
+from descgen.read.description import Options
 from descgen.render import render_package
-from descgen.spec.load import load_spec_text
 from tests.corpus import descriptions, share
 from tests.helpers import ROOT
 

@@ -14,7 +14,7 @@ import yaml
 from lxml import etree
 
 from descgen.cli import main
-from descgen.readers.xacro_file import expand_located
+from descgen.read.xacro_file import expand_located
 from tests.helpers import ROOT, cli
 
 CORPUS = ROOT / "tests" / "data" / "xacro_corpus"
@@ -168,7 +168,7 @@ def test_the_round_trip_proves_each_variant(
     capsys: pytest.CaptureFixture[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """A renderer that writes the real variant's params wrongly must fail the import (exit 1)."""
-    from descgen.importer import variants
+    from descgen.commands.importer import variants
 
     real = variants.hardware
 

@@ -19,9 +19,9 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen.audit.inputs import Options, audit
-from descgen.importer.run import ImportOptions, Outcome, import_description, write_spec
-from descgen.readers.xacro_file import expand_located
+from descgen.commands.importer.run import ImportOptions, Outcome, import_description, write_spec
+from descgen.read.description import Options, audit
+from descgen.read.xacro_file import expand_located
 from tests.helpers import ROOT, cli
 
 CORPUS = ROOT / "tests" / "data" / "xacro_corpus"

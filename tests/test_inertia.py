@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from descgen.inertia import in_link_frame
-from descgen.model import Box, Inertia, Pose
+from descgen.core.model import Box, Inertia, Pose
+from descgen.physics.inertia import in_link_frame
 
 
 def as_matrix(i: Inertia) -> np.ndarray:

@@ -206,7 +206,7 @@ def test_a_config_folder_linked_out_is_refused(tmp_path: Path) -> None:
 
 
 def test_a_robot_name_never_becomes_a_path_into_the_moveit_folder(tmp_path: Path) -> None:
-    from descgen.readers.moveit_config import find_srdf
+    from descgen.read.moveit_config import find_srdf
 
     folder = _planted(tmp_path, [])
     outside = tmp_path / "x.srdf"
@@ -242,7 +242,7 @@ def _mesh_codes(r) -> list[str]:  # type: ignore[no-untyped-def]
 
 
 def _states(urdf: Path, *more: str) -> dict[str, str]:
-    from descgen.mesh_paths import resolve_names
+    from descgen.meshes.paths import resolve_names
 
     return resolve_names(
         ["package://other_pkg/meshes/m.stl", "package://my_pkg/meshes/m.stl"], urdf, [Path(m) for m in more]
@@ -295,7 +295,7 @@ def test_a_package_path_entry_linked_out_is_not_followed(tmp_path: Path) -> None
 
 
 def test_a_package_xml_fifo_in_package_path_does_not_block(tmp_path: Path) -> None:
-    from descgen.packages import find_package
+    from descgen.meshes.packages import find_package
 
     ws = tmp_path / "ws"
     (ws / "pkg").mkdir(parents=True)

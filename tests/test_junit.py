@@ -14,8 +14,8 @@ import pytest
 from junitparser import Failure, JUnitXml
 from lxml import etree
 
-from descgen.findings import Finding, Where
-from descgen.report import junit
+from descgen.core.findings import Finding, Where
+from descgen.output.report import junit
 from tests.helpers import EXAMPLE_TEXT, ROOT, cli, plant, user_project
 
 

@@ -10,11 +10,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from descgen import kinematics
-from descgen.generate import generate
-from descgen.poses import evaluate, findings
+from descgen.audit.spec import load_spec, load_spec_text
+from descgen.commands.generate import generate
+from descgen.physics import kinematics
+from descgen.physics.poses import evaluate, findings
 from descgen.render import render_package
-from descgen.spec import load_spec, load_spec_text
 
 from .conftest import EXAMPLE, ROOT
 from .helpers import EXAMPLE_TEXT, cli, plant
@@ -182,7 +182,7 @@ def pose_failures(tmp: Path, text: str) -> list:  # type: ignore[type-arg]
 
 
 def test_camera_25_m_caught_by_range(tmp_path: Path) -> None:
-    from descgen.findings import InputError
+    from descgen.core.findings import InputError
 
     with pytest.raises(InputError) as exc:
         load_spec_text(plant("xyz: [25 mm, 0, 40 mm]", "xyz: [25 m, 0, 40 mm]"), "spec.yaml")

@@ -15,7 +15,7 @@ from typing import Any
 import pytest
 from lxml import etree
 
-from descgen.readers.xacro_file import expand
+from descgen.read.xacro_file import expand
 from tests.helpers import EXAMPLE_TEXT, ROOT, plant
 
 PKG = ROOT / "generated" / "warehouse_arm_description"
@@ -124,8 +124,8 @@ def test_the_launch_argument_reaches_xacro(
 def test_a_robot_without_variants_declares_no_hardware_argument(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    from descgen.audit.spec import load_spec
     from descgen.render import render_package
-    from descgen.spec.load import load_spec
 
     variants = EXAMPLE_TEXT[EXAMPLE_TEXT.index("    variants:\n") : EXAMPLE_TEXT.index("  update_rate:")]
     spec = tmp_path / "robot.yaml"

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from descgen.readers.controllers import load_substituted, read_controllers_text
+from descgen.read.controllers import load_substituted, read_controllers_text
 from tests.helpers import ROOT, cli
 
 CORPUS = ROOT / "tests" / "data" / "xacro_corpus"

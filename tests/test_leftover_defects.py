@@ -23,8 +23,8 @@ from pathlib import Path
 
 import pytest
 
-from descgen import principal
-from descgen.model import Inertia
+from descgen.core.model import Inertia
+from descgen.physics import principal
 
 from .helpers import cli
 
@@ -127,7 +127,7 @@ def test_a_pose_beyond_the_floats_is_no_traceback(tmp_path: Path, command: str) 
 
 
 def test_max_abs_harmonic_of_non_finite_terms() -> None:
-    from descgen.physics import max_abs_harmonic
+    from descgen.physics.bodies import max_abs_harmonic
 
     # inf - inf: a subtree's moment at x = 1e308 + 1e308 is nan, and floor(nan) raised
     for a, b in ((float("nan"), 1.0), (1.0, float("nan")), (float("inf"), float("-inf"))):
@@ -182,7 +182,7 @@ def test_tf_audit_json_keeps_the_good_recordings(recording: Path, tmp_path: Path
 _PARENT = textwrap.dedent(
     """
     import os, sys, time
-    from descgen import workers
+    from descgen.infra import workers
 
     def slow(n):
         print(os.getpid(), flush=True)

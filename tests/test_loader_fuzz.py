@@ -19,8 +19,9 @@ import yaml
 from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
-from descgen.findings import InputError
-from descgen.spec import Loaded, load_spec_text
+from descgen.audit.spec import load_spec_text
+from descgen.core.findings import InputError
+from descgen.spec import Loaded
 
 from .helpers import EXAMPLE_TEXT
 

@@ -149,7 +149,7 @@ NAME = "tl`<img/src=x/onerror=alert(1)>`|[x](javascript:alert(1))&amp;*_#"
 
 
 def _hostile_robot(tmp_path: Path) -> Any:
-    from descgen.spec import load_spec
+    from descgen.audit.spec import load_spec
 
     text = SPEC.read_text(encoding="utf-8")
     text = text.replace("tool_link", '"' + NAME.replace("\\", "\\\\") + '"')
@@ -168,8 +168,9 @@ OWN_COMMENTS = ("<!-- generated from", "<!-- descgen spec-sha256=", "<!-- sweep 
 def test_generated_markdown_holds_hostile_names_as_text(tmp_path: Path, pin: Any) -> None:
     from dataclasses import replace
 
-    from descgen import collision
-    from descgen.mesh_paths import package_name
+    from descgen.meshes.paths import package_name
+    from descgen.physics import collision
+    from descgen.prove import sweep as sweep_evidence
     from descgen.render import render_package
 
     robot = _hostile_robot(tmp_path)
@@ -178,7 +179,7 @@ def test_generated_markdown_holds_hostile_names_as_text(tmp_path: Path, pin: Any
     urdf = render_package(robot, "arm.yaml", only={f"urdf/{robot.name}.urdf"})[f"urdf/{robot.name}.urdf"]
     matrix = collision.compute(robot, urdf, {}, package_name(robot), sem.collision_matrix, None, False)
     robot = replace(robot, semantic=replace(sem, matrix=matrix))  # as generate does
-    files = render_package(robot, f"a`{IMG}`.yaml")
+    files = render_package(robot, f"a`{IMG}`.yaml", sweep=sweep_evidence.context)
     md = {rel: text for rel, text in files.items() if rel.endswith(".md")}
     assert set(md) >= {f"evidence/{n}.md" for n in ("known_poses", "frames", "collision_matrix", "sweep")}
     for rel, text in md.items():
@@ -192,10 +193,10 @@ def test_generated_markdown_holds_hostile_names_as_text(tmp_path: Path, pin: Any
 
 
 def test_the_evidence_page_holds_a_hostile_spec_file_name_as_text(tmp_path: Path) -> None:
-    from descgen import evidence_page
-    from descgen.checks import CHECKS
+    from descgen.audit.spec import load_spec
+    from descgen.commands import evidence_page
+    from descgen.prove import CHECKS
     from descgen.render import render_package
-    from descgen.spec import load_spec
 
     (tmp_path / "specs").mkdir()
     name = f"a`{IMG}`.yaml"

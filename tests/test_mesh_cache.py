@@ -1,5 +1,5 @@
-"""The persistent mesh-facts cache (descgen/mesh_cache.py) and the numpy binary-STL reader
-(descgen/meshes.py ``_stl_facts``): a cache hit answers as a parse would, a tampered entry is
+"""The persistent mesh-facts cache (descgen/meshes/cache.py) and the numpy binary-STL reader
+(descgen/meshes/load.py ``_stl_facts``): a cache hit answers as a parse would, a tampered entry is
 never trusted, a changed file is measured again, and the numpy reader equals trimesh."""
 
 from __future__ import annotations
@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 import trimesh
 
-from descgen import mesh_cache, meshes
-from descgen.audit.inputs import Options, audit
+from descgen.meshes import cache as mesh_cache
+from descgen.meshes import load as meshes
+from descgen.read.description import Options, audit
 
 from .corpus import descriptions, share
 

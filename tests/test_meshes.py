@@ -1,4 +1,4 @@
-"""Meshes measured (descgen/meshes.py), mesh inertia (descgen/inertia.py) and the mesh rules
+"""Meshes measured (descgen/meshes/load.py), mesh inertia (descgen/physics/inertia.py) and the mesh rules
 (GEOM030-GEOM033) on meshes the tests make with trimesh and on example-robot-data's own."""
 
 from __future__ import annotations
@@ -12,9 +12,9 @@ import pytest
 import trimesh
 from lxml import etree
 
-from descgen import meshes
-from descgen.audit.inputs import Options, audit
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.meshes import load as meshes
+from descgen.read.description import Options, audit
 
 from .corpus import share
 from .helpers import cli

@@ -14,13 +14,13 @@ import yourdfpy
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
-from descgen import kinematics, mimic
+from descgen.audit.spec import load_spec, load_spec_text
 from descgen.cli import main
-from descgen.frames import edges
-from descgen.poses import evaluate
-from descgen.readers.urdf import read_urdf_text
+from descgen.physics import kinematics, mimic
+from descgen.physics.frames import edges
+from descgen.physics.poses import evaluate
+from descgen.read.urdf import read_urdf_text
 from descgen.render import render_package
-from descgen.spec import load_spec, load_spec_text
 
 from .helpers import ROOT, line_of, plant
 
@@ -207,7 +207,7 @@ def test_tf_scenario_moves_the_follower_as_the_oracle_does(tmp_path: Path) -> No
     from rosbags.highlevel import AnyReader
     from rosbags.typesys import Stores, get_typestore
 
-    from descgen.tf import scenario
+    from descgen.commands.tf import scenario
 
     robot = load_spec(FIXTURE).robot
     bag = tmp_path / "rec"

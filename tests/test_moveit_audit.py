@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from descgen.audit.inputs import Options, load_description
-from descgen.audit.moveit_config import audit_moveit_config, moveit_codes
-from descgen.findings import InputError
+from descgen.core.findings import InputError
+from descgen.read.description import Options, load_description
+from descgen.read.moveit_package import audit_moveit_config, moveit_codes
 
 from .helpers import cli, run_cli
 

@@ -15,9 +15,9 @@ import yaml
 from lxml import etree
 
 from descgen.cli import main
-from descgen.generate import plan
-from descgen.moveit import proof
-from descgen.moveit.render import yfloat
+from descgen.commands.generate import plan
+from descgen.prove import moveit as proof
+from descgen.render.moveit import yfloat
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"

@@ -24,7 +24,7 @@ import yaml
 import yourdfpy
 from lxml import etree
 
-from descgen.generate import plan
+from descgen.commands.generate import plan
 from descgen.render import header
 from descgen.render.formatting import mermaid, pyinner, pystr, yamlstr
 

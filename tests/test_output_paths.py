@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from descgen.safeio import output_file, safe_file_name
+from descgen.infra.safeio import output_file, safe_file_name
 
 from .helpers import EXAMPLE_TEXT, cli
 

@@ -7,10 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from descgen import display, physics
-from descgen.model import Box, Collision, Inertial, Joint, Limit, Link, Pose, Robot
-from descgen.naming import mirror_name
-from descgen.zero_pose import forward  # the frames the audit rules pose robots with
+from descgen.core import display
+from descgen.core.model import Box, Collision, Inertial, Joint, Limit, Link, Pose, Robot
+from descgen.core.naming import mirror_name
+from descgen.physics import bodies as physics
+from descgen.physics.zero_pose import forward  # the frames the audit rules pose robots with
 
 G = 9.80665
 
@@ -83,7 +84,7 @@ def test_welded_count_counts_per_rigid_body() -> None:
 
 
 def test_dims_of_primitives() -> None:
-    from descgen.model import Cylinder, Mesh, Sphere
+    from descgen.core.model import Cylinder, Mesh, Sphere
 
     assert physics.dims(Box((0.1, 0.2, 0.3))) == [0.1, 0.2, 0.3]
     assert physics.dims(Cylinder(0.05, 0.4)) == [0.1, 0.4]

@@ -11,8 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from descgen import evidence_page, pose_images
-from descgen.generate import check, plan
+from descgen.commands import evidence_page
+from descgen.commands.generate import check, plan
+from descgen.write import pose_images
 
 from .conftest import ROOT
 

@@ -21,9 +21,9 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from descgen import extent, principal
 from descgen.audit.rules import inertia as rules
-from descgen.model import Inertia, Link
+from descgen.core.model import Inertia, Link
+from descgen.physics import extent, principal
 from tests.test_audit_plain_floats import inertial_links
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -233,7 +233,7 @@ def test_the_screen_without_eigenvectors_never_hides_a_finding(link: Link) -> No
 
 def test_the_screen_settles_a_plain_full_tensor() -> None:
     # a 1 kg box 0.2 x 0.1 x 0.1 m with its own (rotated) tensor: far inside the bound
-    from descgen.model import Box, Collision, Inertial, Pose
+    from descgen.core.model import Box, Collision, Inertial, Pose
 
     t = Inertia(1.108502e-03, 9.9077e-05, -2.3811e-05, 1.092725e-03, 2.3137e-05, 1.898772e-03)
     link = Link("l", collisions=(Collision(Box((0.2, 0.1, 0.1)), Pose()),), inertial=Inertial(1.0, Pose(), t))
@@ -248,7 +248,7 @@ def test_the_screen_settles_a_sphere_about_its_centre() -> None:
     # a sphere's hull is its centre grown by its radius: no sampled point is off the axis, so
     # only the radius bounds the reach. 0.1 kg within 0.02 m: at most m r^2 = 4e-5 about any
     # axis; the rank-one tensor's largest moment is 3e-6 (by hand: the trace)
-    from descgen.model import Collision, Inertial, Pose, Sphere
+    from descgen.core.model import Collision, Inertial, Pose, Sphere
 
     t = Inertia(1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6)
     link = Link("l", collisions=(Collision(Sphere(0.02), Pose()),), inertial=Inertial(0.1, Pose(), t))
@@ -277,7 +277,7 @@ def test_auditing_a_urdf_with_full_tensors_does_not_import_numpy(tmp_path: Path)
         '<collision><geometry><sphere radius="0.02"/></geometry></collision></link></robot>'
     )
     code = (
-        "import sys; from pathlib import Path; from descgen.audit.inputs import audit; "
+        "import sys; from pathlib import Path; from descgen.read.description import audit; "
         f"found = audit(Path({str(urdf)!r})); "
         "print('numpy' in sys.modules); print(sorted(f.code for f in found if f.code.startswith('INER'))); "
         "print([f.message for f in found if f.code == 'INER003'])"

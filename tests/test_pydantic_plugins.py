@@ -1,4 +1,4 @@
-"""descgen/pydantic_plugins.py: the command line's stand-in for pydantic's plugin loader finds no
+"""descgen/infra/pydantic_plugins.py: the command line's stand-in for pydantic's plugin loader finds no
 plugins, yields to the user's PYDANTIC_DISABLE_PLUGINS when it leaves plugins on, and hands any
 other name to pydantic's real loader. Each case runs in a fresh interpreter (the stand-in is
 process-wide)."""
@@ -15,7 +15,7 @@ from tests.conftest import ROOT
 
 _PROBE = """
 import sys
-from descgen.pydantic_plugins import LOADER, no_plugin_lookup
+from descgen.infra.pydantic_plugins import LOADER, no_plugin_lookup
 with no_plugin_lookup():
     from pydantic import BaseModel
     class M(BaseModel):

@@ -1,4 +1,4 @@
-"""``@record`` (descgen/record.py) behaves exactly as ``@dataclass(frozen=True)``.
+"""``@record`` (descgen/core/record.py) behaves exactly as ``@dataclass(frozen=True)``.
 
 The oracle is the standard library: every record class descgen defines is compared with a
 frozen dataclass twin built by ``dataclasses.make_dataclass`` from the same fields, on the
@@ -21,8 +21,8 @@ from typing import Any
 
 import pytest
 
-from descgen import record as record_module
-from descgen.record import record
+from descgen.core import record as record_module
+from descgen.core.record import record
 from tests.conftest import EXAMPLE, ROOT
 
 
@@ -81,9 +81,10 @@ def _as_twin(value: Any, twins: dict[type, type]) -> Any:
 
 @pytest.fixture(scope="module")
 def robot_records() -> list[Any]:
-    from descgen import codes, frames
-    from descgen.readers import urdf_readback
-    from descgen.spec import load_spec
+    from descgen import codes
+    from descgen.audit.spec import load_spec
+    from descgen.physics import frames
+    from descgen.read import urdf_readback
 
     loaded = load_spec(EXAMPLE)
     urdf = ROOT / "generated" / "warehouse_arm_description" / "urdf" / "warehouse_arm.urdf"
@@ -241,9 +242,9 @@ def test_init_compiled_once_and_shared() -> None:
 
 
 def test_defining_model_records_compiles_no_init() -> None:
-    """Importing descgen.model writes no ``__init__`` source: instantiation does (fresh process)."""
+    """Importing descgen.core.model writes no ``__init__`` source: instantiation does (fresh process)."""
     probe = (
-        "import descgen.model as m, dataclasses\n"
+        "import descgen.core.model as m, dataclasses\n"
         "stubs = [c for c in vars(m).values() if isinstance(c, type) and dataclasses.is_dataclass(c)"
         " and c.__init__.__code__.co_name == 'first_init']\n"
         "print(len(stubs))"

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from descgen import render
+from descgen.audit.spec import load_spec
 from descgen.render import default_templates, render_package
-from descgen.spec import load_spec
 
 from .conftest import EXAMPLE
 

@@ -15,8 +15,8 @@ import pytest
 from markupsafe import Markup, escape
 
 import descgen.render as render
+from descgen.audit.spec import load_spec, load_spec_text
 from descgen.render.escaping import escape_text
-from descgen.spec.load import load_spec, load_spec_text
 
 from .helpers import EXAMPLE_TEXT, plant
 

@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 from lxml import etree
 
-from descgen.checks.urdf_roundtrip import _rows_close, urdf_roundtrip
-from descgen.readers import urdf_readback as rb
+from descgen.audit.spec import load_spec
+from descgen.core.xmlcompare import first_difference, parse, same_value
+from descgen.prove.urdf_roundtrip import _rows_close, urdf_roundtrip
+from descgen.read import urdf_readback as rb
 from descgen.render import formatting, render_package
-from descgen.spec import load_spec
-from descgen.xmlcompare import first_difference, parse, same_value
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 from synthetic import chain_spec

@@ -1,4 +1,4 @@
-"""The result cache (descgen/result_cache.py) and what check keeps in it: the sandboxed Xacro
+"""The result cache (descgen/infra/result_cache.py) and what check keeps in it: the sandboxed Xacro
 expansions, catkin_pkg's reading of package.xml and the sweep's table. A hit gives what the
 slow path gives; any changed input is a miss; a stale or edited file is still reported; an
 entry that is not as written is ignored; DESCGEN_CACHE_DIR= switches it off. Also the faster
@@ -20,8 +20,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from descgen import evidence_hash, result_cache
-from descgen.findings import InputError
+from descgen.core.findings import InputError
+from descgen.infra import evidence_hash, result_cache
 from tests.helpers import ROOT, cli
 
 EXAMPLE = ROOT / "specs" / "warehouse_arm.yaml"
@@ -220,7 +220,7 @@ def test_source_digest_is_the_pathlib_walks() -> None:
 
 
 def test_libyaml_loading_is_safe_loads() -> None:
-    from descgen.checks.controllers import safe_load
+    from descgen.prove.controllers import safe_load
 
     texts = [
         p.read_text()
@@ -240,8 +240,8 @@ def test_libyaml_loading_is_safe_loads() -> None:
 
 
 def test_model_values_leave_out_only_where() -> None:
-    from descgen.findings import Where
-    from descgen.spec import load_spec
+    from descgen.audit.spec import load_spec
+    from descgen.core.findings import Where
 
     robot = load_spec(EXAMPLE).robot
     moved = dataclasses.replace(robot, joints=tuple(dataclasses.replace(j, where=Where("x", 9)) for j in robot.joints))
@@ -300,7 +300,7 @@ def test_an_unchanged_package_is_checked_without_xacro_or_catkin(
 ) -> None:
     import catkin_pkg.package
 
-    from descgen.readers import xacro_file
+    from descgen.read import xacro_file
 
     expansions = _counting(monkeypatch, xacro_file, "expand")
     manifests = _counting(monkeypatch, catkin_pkg.package, "parse_package_string")
@@ -316,8 +316,8 @@ def test_an_unchanged_package_is_checked_without_xacro_or_catkin(
 def test_a_cached_expansion_is_still_compared(project: Path) -> None:
     """A hit skips xacro, not the proof: with the rendered URDF changed (the Xacro and what it
     reads unchanged, so the same key), the cached expansion no longer matches it."""
-    from descgen import checks
-    from descgen.generate import plan
+    from descgen import prove as checks
+    from descgen.commands.generate import plan
 
     p = plan(project / "specs" / "warehouse_arm.yaml")
     rel = f"urdf/{p.robot.name}.urdf"
@@ -330,8 +330,8 @@ def test_a_cached_expansion_is_still_compared(project: Path) -> None:
 
 
 def test_an_expansion_is_keyed_by_its_files_args_and_environment(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.checks.xacro_expand import expand_packages
-    from descgen.readers import xacro_file
+    from descgen.prove.xacro_expand import expand_packages
+    from descgen.read import xacro_file
 
     calls = _counting(monkeypatch, xacro_file, "expand")
     xacro = (
@@ -360,7 +360,7 @@ def test_an_expansion_is_keyed_by_its_files_args_and_environment(cache: Path, mo
 def test_manifests_are_catkin_pkgs_and_refusals_are_never_cached(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     import catkin_pkg.package
 
-    from descgen.checks.package import read_manifest
+    from descgen.prove.package import read_manifest
 
     text = (ROOT / "generated" / DESCRIPTION / "package.xml").read_text()
     calls = _counting(monkeypatch, catkin_pkg.package, "parse_package_string")
@@ -389,7 +389,7 @@ def test_a_refused_manifest_still_prints_catkins_warnings(cache: Path, capsys: p
 
     import catkin_pkg.package
 
-    from descgen.checks.package import read_manifest
+    from descgen.prove.package import read_manifest
 
     text = (ROOT / "generated" / DESCRIPTION / "package.xml").read_text()
     text = re.sub(r"<version>[^<]*</version>", "<version>0.01.0</version>", text)
@@ -403,7 +403,7 @@ def test_a_refused_manifest_still_prints_catkins_warnings(cache: Path, capsys: p
 
 
 def test_sweep_table_reused_recomputed_and_stale_reported(project: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.sweep import evidence
+    from descgen.prove import sweep as evidence
 
     computed = _counting(monkeypatch, evidence, "compute")
     code, err = _check(project)
@@ -423,7 +423,7 @@ def test_sweep_table_reused_recomputed_and_stale_reported(project: Path, monkeyp
     assert code == 1 and "evidence/sweep.md is stale: the spec changed" in err
     assert len(computed) >= 1
     # the table the cache gives is the table computed (the slow path, with caching off)
-    from descgen.generate import plan
+    from descgen.commands.generate import plan
 
     robot = plan(spec).robot
     monkeypatch.setenv("DESCGEN_CACHE_DIR", "")

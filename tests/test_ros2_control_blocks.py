@@ -15,13 +15,13 @@ from pathlib import Path
 import pytest
 from lxml import etree
 
-from descgen.checks.semantic_roundtrip import ros2_control_roundtrip
-from descgen.checks.xacro_expand import xacro_variants_match
-from descgen.control.load import load_system
-from descgen.control.system import Plant
-from descgen.readers.xacro_file import expand
+from descgen.audit.spec import load_spec
+from descgen.commands.control.load import load_system
+from descgen.commands.control.system import Plant
+from descgen.prove.semantic_roundtrip import ros2_control_roundtrip
+from descgen.prove.xacro_expand import xacro_variants_match
+from descgen.read.xacro_file import expand
 from descgen.render import render_package
-from descgen.spec.load import load_spec
 from tests.helpers import ROOT, cli, errors_of, line_of, plant
 
 DATA = ROOT / "tests" / "data" / "two_blocks"

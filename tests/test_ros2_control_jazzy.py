@@ -14,11 +14,11 @@ from lxml import etree
 
 from descgen.audit import run as run_rules
 from descgen.cli import main
-from descgen.control.load import load_system
-from descgen.control.system import Plant
-from descgen.findings import Finding, InputError
-from descgen.readers.controllers import read_controllers_text
-from descgen.readers.urdf import read_urdf_text
+from descgen.commands.control.load import load_system
+from descgen.commands.control.system import Plant
+from descgen.core.findings import Finding, InputError
+from descgen.read.controllers import read_controllers_text
+from descgen.read.urdf import read_urdf_text
 
 from .helpers import JAZZY_IMU_INTERFACES, ROOT, errors_of, plant
 
@@ -299,8 +299,8 @@ def test_spec_mimic_false_writes_the_attribute(tmp_path: Path) -> None:
     text = plant(ELBOW_CTRL, ELBOW_CTRL.replace("on_limit: reject,", "on_limit: reject, mimic: false,"), MIMIC_ELBOW)
     # (the example's known poses set elbow_joint against its new leader: other rules, not these)
     assert [f for f in errors_of(text, tmp_path) if f.code.startswith("CTRL04")] == []
+    from descgen.audit.spec import load_spec_text
     from descgen.render.context import build
-    from descgen.spec import load_spec_text
 
     ctx = build(load_spec_text(text, rules=False).robot, xacro=True)
     assert ctx["control_mimic"] == {"elbow_joint": "false"}
@@ -378,8 +378,8 @@ def test_spec_calibrated_wheel_value(tmp_path: Path) -> None:
     mm = round(sep * 1000 + 2.0, 3)  # 2 mm off: within the default 5 mm
     ok = calibrated(f'"{mm} mm"')
     assert errors_of(ok, tmp_path) == []
+    from descgen.audit.spec import load_spec_text
     from descgen.render.context import controllers_doc
-    from descgen.spec import load_spec_text
 
     loaded = load_spec_text(ok)
     written = controllers_doc(loaded.robot)["diff_drive_controller"]["ros__parameters"]

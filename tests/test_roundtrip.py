@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 from lxml import etree
 
-from descgen.checks.semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
-from descgen.checks.urdf_roundtrip import urdf_roundtrip
+from descgen.audit.spec import load_spec
+from descgen.prove.semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
+from descgen.prove.urdf_roundtrip import urdf_roundtrip
 from descgen.render import render_package
-from descgen.spec import load_spec
 
 from .conftest import EXAMPLE
 
@@ -133,7 +133,7 @@ def test_controllers_yaml_edit_is_reported() -> None:
 
 
 def test_controllers_check_reads_the_written_yaml() -> None:
-    from descgen.checks.controllers import controllers_yaml
+    from descgen.prove.controllers import controllers_yaml
 
     assert controllers_yaml(FILES, ROBOT, Path("/pkg")) == []
     files = dict(FILES)

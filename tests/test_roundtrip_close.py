@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from descgen.checks.urdf_roundtrip import TOL, _close
+from descgen.prove.urdf_roundtrip import TOL, _close
 
 
 def _numpy(a: Any, b: Any) -> bool:

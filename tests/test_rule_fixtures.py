@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from descgen.audit import RULES, iter_rules, run
-from descgen.audit.inputs import Options, load_description
-from descgen.findings import Finding
+from descgen.core.findings import Finding
+from descgen.read.description import Options, load_description
 
 FIXTURES = Path(__file__).with_name("rules")
 MAIN_SUFFIXES = (".urdf", ".xacro", ".yaml")

@@ -10,8 +10,8 @@ from collections.abc import Iterable, Iterator
 import pytest
 
 from descgen.audit import RULES, iter_rules, registry
-from descgen.findings import SEVERITIES, Finding
-from descgen.model import Robot
+from descgen.core.findings import SEVERITIES, Finding
+from descgen.core.model import Robot
 
 from .helpers import cli
 
@@ -126,7 +126,7 @@ def test_cli_rules_lists_every_code() -> None:
     r = cli("rules")
     assert r.returncode == 0, r.stderr
     listed = [line.split()[0] for line in r.stdout.splitlines() if line.strip()]
-    from descgen.codes import entries
+    from descgen.audit.catalogue import entries
 
     assert listed == [e.code for e in entries()]  # the whole catalogue, rules among it
     assert {info.code for info in ALL} <= set(listed)

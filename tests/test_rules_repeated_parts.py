@@ -5,7 +5,7 @@ hand computations from the shapes and tensors below."""
 from __future__ import annotations
 
 from descgen.audit.registry import run
-from descgen.model import Box, Collision, Inertia, Inertial, Joint, Limit, Link, Pose, Robot
+from descgen.core.model import Box, Collision, Inertia, Inertial, Joint, Limit, Link, Pose, Robot
 
 
 def _link(name: str, side: float, moment: float, com: float = 0.0) -> Link:

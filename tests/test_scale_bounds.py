@@ -26,8 +26,11 @@ from typing import Any
 
 import pytest
 
-from descgen import collision, units, yamlsource
-from descgen.findings import InputError
+from descgen.audit.spec import INPUT_RULES, load_spec_text
+from descgen.core import units
+from descgen.core.findings import InputError
+from descgen.infra import yamlsource
+from descgen.physics import collision
 from descgen.spec import load
 from tests.helpers import ROOT, cli
 
@@ -81,7 +84,7 @@ def _passes_over_marks(text: str) -> tuple[int, int]:
     _Counted.passes = 0
     doc = dataclasses.replace(doc, value_marks=_Counted(doc.value_marks), key_marks=_Counted(doc.key_marks))
     with pytest.raises(InputError) as err:
-        load.from_document(doc)
+        load.from_document(doc, rules=INPUT_RULES)
     return _Counted.passes, len(err.value.findings)
 
 
@@ -102,7 +105,7 @@ def test_findings_inside_bad_elements_are_still_dropped() -> None:
         "size: [40 mm, 40 mm, 100 mm]}}}]\n    inertial", "size: [40 kg, 40 mm, 100 mm]}}}]\n    inertial"
     )
     with pytest.raises(InputError) as err:
-        load.load_spec_text(text, "r.yaml")
+        load_spec_text(text, "r.yaml")
     codes = sorted({f.code for f in err.value.findings})
     assert codes == ["UNIT003"], [(f.code, f.message) for f in err.value.findings]
     assert len(err.value.findings) == 5
@@ -117,7 +120,7 @@ def test_a_bad_quantity_repeated_through_aliases_is_parsed_once(monkeypatch: pyt
     lines += ["      - &v {geometry: {box: {size: [40 kg, 40 mm, 100 mm]}}}"]
     lines += ["      - *v"] * 999
     with pytest.raises(InputError) as err:
-        load.load_spec_text("\n".join(lines) + "\n", "a.yaml")
+        load_spec_text("\n".join(lines) + "\n", "a.yaml")
     assert len(err.value.findings) == 1000  # one per visual: each is reported at the anchor
     assert calls.count("40 kg") == 1
     units._to_si_cached.cache_clear()
@@ -195,7 +198,7 @@ def _sweep(path: Path, *args: str) -> tuple[int, dict[str, Any], str]:
 
 
 def test_sweep_past_the_pose_bound_is_sweep007(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import descgen.sweep as sweep
+    import descgen.physics.sweep as sweep
 
     path = _write(tmp_path, "c.urdf", chain_urdf(5))
     work = 4 * 5 * (2 + 1)  # joints x links x (steps + 1)
@@ -208,7 +211,7 @@ def test_sweep_past_the_pose_bound_is_sweep007(tmp_path: Path, monkeypatch: pyte
 
 
 def test_sweep_past_the_pair_tests_is_sweep008(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import descgen.sweep as sweep
+    import descgen.physics.sweep as sweep
 
     monkeypatch.setattr(sweep, "MAX_CHECKS", 3)
     code, doc, err = _sweep(_write(tmp_path, "c.urdf", chain_urdf(5)), "--steps", "2")
@@ -251,7 +254,7 @@ def test_a_deep_chain_with_one_moving_joint_keeps_pinocchio_out(tmp_path: Path) 
 def test_pairs_follow_the_old_all_pairs_walk() -> None:
     """The pairs walk over other groups' later links gives the pairs, in the order, of the walk
     over every pair of links."""
-    from descgen.sweep import motion
+    from descgen.physics.sweep import motion
 
     def every_pair(poses: Any, geometry: Any, disabled: Any) -> tuple[tuple[str, str], ...]:
         names = [n for n in geometry if n in poses[0]]
@@ -263,8 +266,8 @@ def test_pairs_follow_the_old_all_pairs_walk() -> None:
                     out.append((a, b))
         return tuple(out)
 
-    from descgen.readers.urdf import read_urdf_text
-    from descgen.zero_pose import forward, forward_from
+    from descgen.physics.zero_pose import forward, forward_from
+    from descgen.read.urdf import read_urdf_text
 
     robot, _ = read_urdf_text(chain_urdf(12).encode(), "c.urdf")
     names = [lk.name for lk in robot.links]
@@ -280,8 +283,8 @@ def test_pairs_follow_the_old_all_pairs_walk() -> None:
 
 
 def test_simulate_bounds_by_hand() -> None:
-    from descgen import simulate
-    from descgen.readers.urdf import read_urdf_text
+    from descgen.commands import simulate
+    from descgen.read.urdf import read_urdf_text
 
     robot, _ = read_urdf_text(chain_urdf(10).encode(), "c.urdf")
     simulate_work = 9 * 10 * 19 // 6  # sum of depth^2 for depths 1..9
@@ -300,7 +303,7 @@ def test_simulate_bounds_by_hand() -> None:
 
 def test_simulate_past_a_bound_is_sim017_before_mujoco(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     pytest.importorskip("mujoco")
-    from descgen import simulate
+    from descgen.commands import simulate
 
     compiled = []
     monkeypatch.setattr(simulate, "compile_robot", lambda *a, **k: compiled.append(a))
@@ -320,7 +323,7 @@ def test_simulate_10000_links_is_a_finding(tmp_path: Path) -> None:
 
 
 def test_import_past_the_link_bound_writes_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from descgen.importer import run
+    from descgen.commands.importer import run
 
     monkeypatch.setattr(run, "MAX_LINKS", 4)
     out = tmp_path / "c.yaml"
@@ -341,7 +344,7 @@ def test_import_of_a_spec_validate_would_refuse_is_not_blamed_on_the_description
 
 def test_pinocchio_is_not_given_a_robot_past_its_bounds(monkeypatch: pytest.MonkeyPatch) -> None:
     # the collision matrix's way in (generate): GEN070 at the matrix, before pinocchio is imported
-    from descgen.readers.urdf import read_urdf_text
+    from descgen.read.urdf import read_urdf_text
 
     robot, _ = read_urdf_text(chain_urdf(5).encode(), "c.urdf")
     assert collision.too_large(robot) == ""

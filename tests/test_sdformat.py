@@ -5,7 +5,7 @@ generated description. Expected findings are worked out by hand from each URDF."
 from __future__ import annotations
 
 from descgen.audit import run
-from descgen.readers.urdf import read_urdf_text
+from descgen.read.urdf import read_urdf_text
 
 INER = '<inertial><mass value="{m}"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
 

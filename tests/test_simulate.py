@@ -14,10 +14,10 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco", reason="descgen simulate needs the optional mujoco package (descgen[sim])")
 
-from descgen.simulate import Settings, gravity, simulate  # noqa: E402
-from descgen.simulate.faults import CATALOGUE, plant_all  # noqa: E402
-from descgen.simulate.mujoco_urdf import emit  # noqa: E402
-from descgen.spec import load_spec  # noqa: E402
+from descgen.audit.spec import load_spec  # noqa: E402
+from descgen.commands.simulate import Settings, gravity, simulate  # noqa: E402
+from descgen.commands.simulate.faults import CATALOGUE, plant_all  # noqa: E402
+from descgen.commands.simulate.mujoco_urdf import emit  # noqa: E402
 from tests.helpers import ROOT, cli, run_cli  # noqa: E402
 
 SPEC = ROOT / "specs" / "warehouse_arm.yaml"
@@ -129,7 +129,7 @@ def test_a_pendulum_its_effort_cannot_hold_falls(tmp_path: Path) -> None:
 
 def test_the_emitted_urdf_swings_with_the_hand_computed_period() -> None:
     """Small swings of a compound pendulum: T = 2 pi sqrt(I_pivot / (m g L)), I_pivot = I_c + m L^2."""
-    from descgen.readers.urdf import read_urdf_text
+    from descgen.read.urdf import read_urdf_text
 
     m, length, ic = 2.0, 0.4, 0.01
     text = pendulum(mass=m, length=length, ic=ic)
@@ -231,7 +231,7 @@ def test_a_package_mesh_reaches_mujoco(tmp_path: Path) -> None:
     path = _write(pkg, _with_mesh("package://bot_description/meshes/cube.stl"))
     ran = cli("simulate", path, "--package-path", tmp_path / "ws")
     assert ran.returncode == 0 and "SIM008" not in ran.stderr, ran.stderr
-    robot = __import__("descgen.audit.inputs", fromlist=["x"]).load_description(path)[0]
+    robot = __import__("descgen.read.description", fromlist=["x"]).load_description(path)[0]
     emitted = emit(robot, path, [tmp_path / "ws"])
     model = mujoco.MjModel.from_xml_string(emitted.text, emitted.assets)
     assert model.nmesh == 1 and model.mesh_vertnum[0] == 8  # the hand-written cube's 8 corners

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from descgen.model import Box, Cylinder, Sphere
-from descgen.spec import load_spec
+from descgen.audit.spec import load_spec
+from descgen.core.model import Box, Cylinder, Sphere
 
 from .conftest import EXAMPLE
 
@@ -87,7 +87,7 @@ def test_measured_values_in_si(robot) -> None:  # type: ignore[no-untyped-def]
 
 
 def test_camera_optical_frame_rep103(robot) -> None:  # type: ignore[no-untyped-def]
-    from descgen.transforms import rpy_matrix
+    from descgen.physics.transforms import rpy_matrix
 
     j = robot.joint("camera_optical_joint")
     r = rpy_matrix(j.origin.rpy)

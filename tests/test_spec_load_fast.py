@@ -1,6 +1,6 @@
 """The spec loader's cheaper paths (issue 17) give what the slower ones gave.
 
-- A primitive's inertia in link axes is plain Python (descgen/inertia.py): numpy's R·I·Rᵀ is
+- A primitive's inertia in link axes is plain Python (descgen/physics/inertia.py): numpy's R·I·Rᵀ is
   the oracle, and loading a spec does not import numpy.
 - The YAML builder takes plain text scalars without a call: at the depth and node limits it
   still fails where a hand count says it must.
@@ -22,13 +22,14 @@ import pytest
 import yaml
 from pydantic import BaseModel
 
-from descgen import inertia, rigid, yamlsource
-from descgen.findings import InputError
-from descgen.model import Box, Cylinder, Pose, Sphere
-from descgen.spec import load_spec, load_spec_text
+from descgen.audit.spec import load_spec, load_spec_text
+from descgen.core.findings import InputError
+from descgen.core.model import Box, Cylinder, Pose, Sphere
+from descgen.infra import yamlsource
+from descgen.physics import inertia, rigid
+from descgen.physics.transforms import rpy_matrix
 from descgen.spec.quantity import Measured, Written
 from descgen.spec.sources import _walk_sources
-from descgen.transforms import rpy_matrix
 from tests.conftest import EXAMPLE, ROOT
 
 
@@ -86,7 +87,7 @@ def test_loading_a_spec_does_not_import_numpy() -> None:
     the whole-model rules (rules=False here) are the audit's, which may use it."""
     probe = (
         "import sys\n"
-        "from descgen.spec import load_spec\n"
+        "from descgen.audit.spec import load_spec\n"
         f"loaded = load_spec({str(EXAMPLE)!r}, rules=False)\n"
         "assert any(lk.inertial and lk.inertial.inertia for lk in loaded.robot.links)\n"
         "print('numpy' in sys.modules)\n"

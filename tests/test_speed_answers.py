@@ -19,9 +19,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
 from synthetic import chain_spec
 
-from descgen import kinematics, meshes
+from descgen.audit.spec import load_spec_text
+from descgen.meshes import load as meshes
+from descgen.physics import kinematics
 from descgen.render import render_package
-from descgen.spec import load_spec_text
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -113,7 +114,7 @@ def test_chain_without_sources_has_no_properties(tmp_path: Path) -> None:
 
 
 def test_example_keeps_a_property_for_every_sourced_value(tmp_path: Path) -> None:
-    from descgen.spec import load_spec
+    from descgen.audit.spec import load_spec
 
     robot = load_spec(ROOT / "specs" / "warehouse_arm.yaml").robot
     tree = _xacro_expands_to_urdf(tmp_path, render_package(robot, "specs/warehouse_arm.yaml"), "warehouse_arm")
@@ -140,12 +141,12 @@ def test_mixed_sources_only_sourced_values_become_properties(tmp_path: Path) -> 
 NO_PLOTS = """
 import sys, tempfile
 from pathlib import Path
-from descgen.control.evidence import write_evidence
-from descgen.control.manager import Point
-from descgen.control.run import run
-from descgen.control.system import Plant
-from descgen.control.trajectory import Trajectory
-from descgen.spec import load_spec
+from descgen.commands.control.evidence import write_evidence
+from descgen.commands.control.manager import Point
+from descgen.commands.control.run import run
+from descgen.commands.control.system import Plant
+from descgen.commands.control.trajectory import Trajectory
+from descgen.audit.spec import load_spec
 robot = load_spec("specs/warehouse_arm.yaml").robot
 joints = ["lift_joint", "shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint"]
 traj = Trajectory("arm_controller", joints, [Point(1.0, (0.1, 0.2, 0.2, -0.5))])

@@ -3,7 +3,7 @@
 - rule modules hold rules only: nothing imports from ``descgen.audit.rules.*`` but the
   registry and the rules package's own ``__init__`` (which loads every rule module);
 - the model has no untyped side channel (``Robot.extras``);
-- joint-type tuples are written once, in ``descgen/model.py``.
+- joint-type tuples are written once, in ``descgen/core/model.py``.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from descgen import model
+from descgen.core import model
 from descgen.spec import models as spec_models
 
 PACKAGE = Path(__file__).resolve().parents[1] / "descgen"
@@ -115,7 +115,7 @@ def test_joint_type_tuples_only_in_the_model() -> None:
         for path in _modules()
         # the read-back reader of proof 2 is independent of the model on purpose (it is the
         # parser that checks what the model wrote), so it spells urdfdom's joint types itself
-        if path not in (PACKAGE / "model.py", PACKAGE / "readers" / "urdf_readback.py")
+        if path not in (PACKAGE / "core" / "model.py", PACKAGE / "read" / "urdf_readback.py")
         for hit in _joint_type_literals(path.read_text(encoding="utf-8"), str(path.relative_to(PACKAGE.parent)))
     ]
     assert offenders == []

@@ -193,7 +193,7 @@ def test_without_srdf_adjacent_pairs_are_not_checked(tmp_path: Path) -> None:
 
 
 def test_without_pinocchio_directions_still_come(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import descgen.sweep as sweep
+    import descgen.physics.sweep as sweep
 
     monkeypatch.setattr(sweep, "available", lambda: False)
     urdf, srdf = _write(tmp_path)
@@ -225,8 +225,9 @@ def test_mimic_follower_moves_with_its_leader() -> None:
 
 
 def test_committed_runs_are_reused_only_with_the_same_hash() -> None:
-    from descgen.generate import plan
-    from descgen.sweep import _RUNS, evidence
+    from descgen.commands.generate import plan
+    from descgen.physics.sweep import _RUNS
+    from descgen.prove import sweep as evidence
 
     robot = plan(EXAMPLE).robot
     text = evidence.context(robot)["data"]

@@ -1,6 +1,6 @@
-"""The sweep's motion analysis in plain floats (descgen/sweep/motion.py, so that a ``check``
+"""The sweep's motion analysis in plain floats (descgen/physics/sweep/motion.py, so that a ``check``
 computing the sweep does not import numpy) against the same analysis done on the numpy 4x4
-matrices of descgen.kinematics (held to pinocchio by tests/test_kinematics.py), joint by joint,
+matrices of descgen.physics.kinematics (held to pinocchio by tests/test_kinematics.py), joint by joint,
 over every robot of the example-robot-data corpus and the example. Nothing is timed; that a
 ``check`` computing the sweep imports no numpy is tests/test_check_plain_floats.py's and
 tests/test_cold_start.py's."""
@@ -14,12 +14,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from descgen import kinematics
-from descgen.model import Robot
-from descgen.readers.urdf import read_urdf
-from descgen.spec import load_spec
-from descgen.sweep import DEFAULT_STEPS, disabled_pairs, grid, state_values, sweepable
-from descgen.sweep.motion import MOVES, analyse, joint_values, quarter_turn
+from descgen.audit.spec import load_spec
+from descgen.core.model import Robot
+from descgen.physics import kinematics
+from descgen.physics.sweep import DEFAULT_STEPS, disabled_pairs, grid, state_values, sweepable
+from descgen.physics.sweep.motion import MOVES, analyse, joint_values, quarter_turn
+from descgen.read.urdf import read_urdf
 from tests.corpus import descriptions
 from tests.helpers import ROOT, cli
 

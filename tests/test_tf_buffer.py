@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from descgen.tf.buffer import BufferCore, Transform, TransformError, quat_matrix
+from descgen.commands.tf.buffer import BufferCore, Transform, TransformError, quat_matrix
 
 ORACLE = Path(__file__).with_name("tf2_oracle.py")
 SYSTEM_PYTHON = "/usr/bin/python3"

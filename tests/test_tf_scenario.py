@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from descgen.spec import load_spec
-from descgen.tf import bagaudit, scenario
+from descgen.audit.spec import load_spec
+from descgen.commands.tf import bagaudit, scenario
 
 from .conftest import EXAMPLE
 from .helpers import cli
@@ -29,7 +29,7 @@ def camera_results(rep: bagaudit.Report) -> list[tuple[float, str]]:
 
 
 # Which camera messages each fault spoils, by hand from the scenario's definition (module
-# docstring of descgen/tf/scenario.py): camera message k is exposed at t_k = k/30 s + 5 ms
+# docstring of descgen/commands/tf/scenario.py): camera message k is exposed at t_k = k/30 s + 5 ms
 # (k = 0..299 in 10 s) and logged 20 ms later; the audit looks each one up at its log time.
 # - camera-future: stamps +300 ms for t_k in [2 s, 3 s): 2 <= k/30 + 0.005 < 3 gives k = 60..89,
 #   each stamped ahead of every transform received by then.

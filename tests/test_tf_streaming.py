@@ -13,9 +13,9 @@ import pytest
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import Stores, get_typestore
 
-from descgen.spec import load_spec
-from descgen.tf import bagaudit, scenario
-from descgen.tf.buffer import BufferCore
+from descgen.audit.spec import load_spec
+from descgen.commands.tf import bagaudit, scenario
+from descgen.commands.tf.buffer import BufferCore
 
 from .conftest import EXAMPLE
 from .helpers import cli

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from descgen import units
+from descgen.core import units
 
 
 @pytest.mark.parametrize(

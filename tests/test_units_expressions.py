@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from descgen import units
+from descgen.core import units
 from tests.conftest import EXAMPLE, ROOT
 from tests.helpers import pint_si
 
@@ -108,7 +108,7 @@ def test_random_arithmetic_is_pints(monkeypatch: pytest.MonkeyPatch) -> None:
 
 def test_validating_the_example_never_imports_pint() -> None:
     probe = (
-        "import sys\nfrom descgen.spec import load_spec\nload_spec(sys.argv[1])\n"
+        "import sys\nfrom descgen.audit.spec import load_spec\nload_spec(sys.argv[1])\n"
         "print('PINT' if 'pint' in sys.modules else 'NO-PINT')"
     )
     done = subprocess.run(

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from descgen import cache_dir, units
+from descgen.core import cache_dir, units
 from tests.helpers import pint_si
 
 NUMBERS = ["0", "-0", "1", "300", "-90", "0.175", "19.1", "1e-3", "2.5E+2", "+7", "123456789012345", "0.1"]

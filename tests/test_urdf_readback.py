@@ -1,4 +1,4 @@
-"""The lxml read-back reader of proof 2 (descgen/readers/urdf_readback.py) against its oracles:
+"""The lxml read-back reader of proof 2 (descgen/read/urdf_readback.py) against its oracles:
 yourdfpy on every example-robot-data URDF and on the generated one, urdfdom's check_urdf on
 what it refuses, and hand-computed rotations and defaults (reference/urdf.md)."""
 
@@ -13,11 +13,11 @@ from typing import Any
 import numpy as np
 import pytest
 
-from descgen.checks import run_all
-from descgen.checks.urdf_roundtrip import from_yourdfpy, urdf_roundtrip, urdf_roundtrip_yourdfpy
-from descgen.readers import urdf_readback as rb
+from descgen.audit.spec import load_spec
+from descgen.prove import run_all
+from descgen.prove.urdf_roundtrip import from_yourdfpy, urdf_roundtrip, urdf_roundtrip_yourdfpy
+from descgen.read import urdf_readback as rb
 from descgen.render import render_package
-from descgen.spec import load_spec
 
 from .conftest import EXAMPLE, require_tool
 from .corpus import descriptions

@@ -12,11 +12,11 @@ from pathlib import Path
 
 import pytest
 
-from descgen import units
 from descgen.audit import RULES, iter_rules, registry
 from descgen.cli import main
-from descgen.findings import Finding
-from descgen.model import Robot
+from descgen.core import units
+from descgen.core.findings import Finding
+from descgen.core.model import Robot
 
 from .helpers import EXAMPLE_TEXT, line_of, plant
 

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from descgen.spec import load_spec
-from descgen.view import load, markers, presets, sliders
+from descgen.audit.spec import load_spec
+from descgen.commands.view import load, markers, presets, sliders
 
 from .conftest import ROOT, require_tool
 from .helpers import cli, view_until_url_then_ctrl_c
@@ -106,7 +106,7 @@ def browser_view() -> Iterator[tuple[object, object]]:
     chromium = require_tool("chromium-headless-shell")
     if os.environ.get("DESCGEN_REQUIRE_TOOLS") != "1":
         pytest.importorskip("viser")
-    from descgen.view.server import start
+    from descgen.commands.view.server import start
 
     robot, urdf = load(SPEC)
     view = start(robot, urdf, "127.0.0.1", 0, SPEC.parent)

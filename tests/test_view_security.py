@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from descgen.view import load, mesh_plan
+from descgen.commands.view import load, mesh_plan
 
 from .conftest import ROOT
 from .helpers import view_until_url_then_ctrl_c
@@ -77,7 +77,7 @@ def _viser() -> None:
 @pytest.fixture
 def viewer() -> Iterator[Any]:
     _viser()
-    from descgen.view.server import start
+    from descgen.commands.view.server import start
 
     robot, urdf = load(SPEC)
     view = start(robot, urdf, "127.0.0.1", 0)
@@ -188,7 +188,7 @@ def test_the_share_button_cannot_open_a_public_tunnel(viewer: Any) -> None:
 
 
 def test_allowed_hosts_by_hand() -> None:
-    from descgen.view.server import allowed_hosts, refusal
+    from descgen.commands.view.server import allowed_hosts, refusal
 
     assert allowed_hosts("127.0.0.1", 8080) == {"127.0.0.1:8080", "localhost:8080", "[::1]:8080"}
     assert allowed_hosts("::1", 80) >= {"[::1]:80", "localhost", "[::1]", "127.0.0.1"}
@@ -228,7 +228,7 @@ def _vertices(scene: Any) -> np.ndarray:
 
 def test_meshes_outside_the_package_are_not_opened_nor_served(tree: dict[str, Path]) -> None:
     _viser()
-    from descgen.view.server import start
+    from descgen.commands.view.server import start
 
     secret, sibling = tree["secret"], tree["sibling"]
     urdf = tree["pkg"] / "urdf" / "robot.urdf"
@@ -277,7 +277,7 @@ def test_meshes_outside_the_package_are_not_opened_nor_served(tree: dict[str, Pa
 
 def test_a_spec_with_a_mesh_outside_its_folder_is_refused_before_serving(tmp_path: Path) -> None:
     """A spec's meshes are resolved by validate's rules: one outside its folder stops view at load."""
-    from descgen.findings import InputError
+    from descgen.core.findings import InputError
 
     text = SPEC.read_text(encoding="utf-8")
     _stl(tmp_path / "outside.stl")
@@ -296,7 +296,7 @@ def test_a_spec_with_a_mesh_outside_its_folder_is_refused_before_serving(tmp_pat
 
 def test_malformed_and_over_bound_stl_are_findings_read_within_bounds(tree: dict[str, Path]) -> None:
     _viser()
-    from descgen.view.server import start
+    from descgen.commands.view.server import start
 
     meshes = tree["pkg"] / "meshes"
     (meshes / "garbage.stl").write_bytes(b"\x00\x01not a mesh" * 20)

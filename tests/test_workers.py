@@ -1,4 +1,4 @@
-"""descgen/workers.py: --jobs work in processes. What the workers start with is checked
+"""descgen/infra/workers.py: --jobs work in processes. What the workers start with is checked
 directly; the end-to-end cases (a worker killed, SIGTERM, Ctrl-C) are in tests/test_audit_many.py."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import signal
 
 import pytest
 
-from descgen import workers
+from descgen.infra import workers
 
 
 def _state(n: int) -> tuple[int, str, str, bool, bool]:

@@ -29,8 +29,8 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen.findings import InputError
-from descgen.generate import plan
+from descgen.commands.generate import plan
+from descgen.core.findings import InputError
 
 from .helpers import EXAMPLE_TEXT, ROOT, cli, get_at, set_at, string_leaves
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import xacro
 
-from descgen.readers.xacro_file import expand, expand_located
+from descgen.read.xacro_file import expand, expand_located
 from tests.corpus import share
 from tests.helpers import ROOT
 

@@ -17,10 +17,10 @@ import pytest
 import xacro
 from lxml import etree
 
-from descgen.findings import Finding, InputError, Where
-from descgen.readers.urdf import element_sources
-from descgen.readers.xacro_file import expand_located
-from descgen.report import text
+from descgen.core.findings import Finding, InputError, Where
+from descgen.output.report import text
+from descgen.read.urdf import element_sources
+from descgen.read.xacro_file import expand_located
 from tests.corpus import share
 from tests.helpers import ROOT, cli
 

@@ -17,8 +17,8 @@ import pytest
 import xacro
 
 from descgen.cli import main
-from descgen.findings import InputError
-from descgen.readers.xacro_file import expand
+from descgen.core.findings import InputError
+from descgen.read.xacro_file import expand
 from tests.corpus import share
 from tests.helpers import ROOT
 

@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 import xacro
 
-from descgen.readers.xacro_file import expand, to_xml
+from descgen.read.xacro_file import expand, to_xml
 
 ROOT = Path(__file__).resolve().parents[1]
 XMLNS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

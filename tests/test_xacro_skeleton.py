@@ -13,10 +13,10 @@ import xacro
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from descgen.checks.xacro_expand import expand_scratch
-from descgen.findings import InputError
-from descgen.readers import xacro_file, xacro_skeleton
-from descgen.xmlcompare import first_difference, parse
+from descgen.core.findings import InputError
+from descgen.core.xmlcompare import first_difference, parse
+from descgen.prove.xacro_expand import expand_scratch
+from descgen.read import xacro_file, xacro_skeleton
 from tests.corpus import share
 from tests.helpers import ROOT
 
@@ -228,7 +228,7 @@ def test_what_the_sandbox_bounds_still_refuses(tmp_path: Path, monkeypatch: pyte
     with pytest.raises(InputError, match="larger than"):
         expand_scratch(path, "r", {}, [tmp_path])
     monkeypatch.undo()
-    from descgen.checks import xacro_expand
+    from descgen.prove import xacro_expand
 
     split = xacro_skeleton.split
     calls_made: list[str] = []

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 import xacro
 
-from descgen.findings import InputError
-from descgen.readers import xacro_file
-from descgen.readers.xacro_file import expand, expand_located
+from descgen.core.findings import InputError
+from descgen.read import xacro_file
+from descgen.read.xacro_file import expand, expand_located
 
 XMLNS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 

@@ -1,4 +1,4 @@
-"""The spec loader's shortcuts (descgen/yamlsource.py: a per-document memo of scalar tags, plain
+"""The spec loader's shortcuts (descgen/infra/yamlsource.py: a per-document memo of scalar tags, plain
 strings taken without the constructor) must give what PyYAML's own safe loader gives: the same
 data, and for every node the same line and column as PyYAML's pure-Python composer."""
 
@@ -8,7 +8,7 @@ from typing import Any
 
 import yaml
 
-from descgen import yamlsource
+from descgen.infra import yamlsource
 from tests.conftest import EXAMPLE
 
 # the same texts plain and quoted: a memo keyed on the text alone would type them alike

@@ -1,4 +1,4 @@
-"""descgen/yamlsource.py's loader replaces PyYAML's per-node resolver calls (descend, ascend,
+"""descgen/infra/yamlsource.py's loader replaces PyYAML's per-node resolver calls (descend, ascend,
 resolve) when no path resolver is registered: every node must get the tag PyYAML's own
 pure-Python loader gives it, and a loader with a path resolver must keep PyYAML's methods."""
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import yaml
 
-from descgen import yamlsource
+from descgen.infra import yamlsource
 from tests.test_yamlsource_fast import TRICKY
 
 NESTED = TRICKY + "r: {s: [1, '2', {t: 3.0}], u: [[], {}]}\nv: !!python/none x\n"

@@ -1,5 +1,5 @@
 """Rules over the robot model, shared by ``validate``, ``generate`` and ``audit``."""
 
-from .registry import RULES, RuleInfo, at, iter_rules, rule, run
+from descgen.audit.registry import RULES, RuleInfo, at, iter_rules, rule, run
 
 __all__ = ["RULES", "RuleInfo", "at", "iter_rules", "rule", "run"]

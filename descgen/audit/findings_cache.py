@@ -6,16 +6,16 @@ function of
 
 - the bytes of those files, the names they are shown by (every finding carries one) and the
   launch arguments the controllers YAML is read with;
-- where each mesh reference resolves (descgen/mesh_paths.py: the description's real folder,
+- where each mesh reference resolves (descgen/meshes/paths.py: the description's real folder,
   the package paths, the package.xml files on the way) and the content of each mesh found;
-- descgen itself (its source hash, descgen/evidence_hash.py) and the libraries that read the
+- descgen itself (its source hash, descgen/infra/evidence_hash.py) and the libraries that read the
   files and measure the meshes.
 
-The key (descgen/result_cache.py) holds the first and the last. The entry records the second:
+The key (descgen/infra/result_cache.py) holds the first and the last. The entry records the second:
 every mesh name with its state, the file it resolved to and that file's stat data. A hit
 resolves the recorded names again and stats the files; any difference is a miss, and the
 description is audited as without the cache. Stat data stands for a mesh's content exactly as
-in the mesh cache's stat index (descgen/mesh_cache.py), with the same trust (docs/security.md):
+in the mesh cache's stat index (descgen/meshes/cache.py), with the same trust (docs/security.md):
 whoever can write the cache folder can make audit print what they like.
 
 A Xacro (includes, arguments, ``$(find)``), a spec and a MoveIt config folder read an
@@ -32,15 +32,15 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, cast
 
-from .. import result_cache
-from ..cache_dir import cache_root
-from ..evidence_hash import sha256
-from ..findings import SEVERITIES, Finding, InputError, Severity, Where
-from ..mesh_cache import stat_of
-from ..mesh_paths import resolve_names
-from ..model import Robot
-from ..record import record
-from ..safeio import read_bounded
+from descgen.core.cache_dir import cache_root
+from descgen.core.findings import SEVERITIES, Finding, InputError, Severity, Where
+from descgen.core.model import Robot
+from descgen.core.record import record
+from descgen.infra import result_cache
+from descgen.infra.evidence_hash import sha256
+from descgen.infra.safeio import read_bounded
+from descgen.meshes.cache import stat_of
+from descgen.meshes.paths import resolve_names
 
 KIND = "audit"
 KEEP = 1024  # entries: a workspace of a few hundred descriptions, audited with a few option sets
@@ -50,7 +50,7 @@ TOOLS = ("lxml", "PyYAML", "numpy", "trimesh", "pycollada")
 MAX_VIA = 64  # macro call depth recorded per location; a plain URDF has none
 RACY_NS = 2_000_000_000  # a mesh changed this shortly before the audit is not vouched for by its stat (as mesh_cache)
 UNMEASURED = "GEOM033"  # a mesh that could not be read may have failed for a passing reason (EIO, EMFILE)
-_CODE = re.compile(r"[A-Z]{2,10}[0-9]{3}")  # every code of the catalogue (descgen/codes.py)
+_CODE = re.compile(r"[A-Z]{2,10}[0-9]{3}")  # every code of the catalogue (descgen/codes/__init__.py)
 
 
 @record

@@ -7,8 +7,8 @@ falls back to the controller's own key (``Controller.where_of``)."""
 
 from __future__ import annotations
 
-from ..findings import Where
-from ..model import Controller
+from descgen.core.findings import Where
+from descgen.core.model import Controller
 
 
 class Param:

@@ -11,10 +11,10 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from typing import Literal
 
-from ..codes import CODES, NAMES
-from ..findings import Finding, Severity, Where
-from ..model import Robot
-from ..record import record
+from descgen.codes import CODES, NAMES
+from descgen.core.findings import Finding, Severity, Where
+from descgen.core.model import Robot
+from descgen.core.record import record
 
 CATEGORIES = ("TOPO", "NAME", "UNIT", "INER", "GEOM", "JOINT", "POSE", "SRDF", "CTRL", "FRAME", "TIME", "MOVEIT")
 _CODE = re.compile(rf"^({'|'.join(CATEGORIES)})\d{{3}}$")
@@ -51,7 +51,7 @@ def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Ca
         if code in RULES or any(r.name == name for r in RULES.values()):
             raise ValueError(f"duplicate rule {code} {name}")
         if code in CODES or name in NAMES:
-            # one catalogue (descgen/codes.py): a rule may not reuse a loader/reader code
+            # one catalogue (descgen/codes/__init__.py): a rule may not reuse a loader/reader code
             raise ValueError(f"rule {code} {name} duplicates a catalogue code")
         doc = inspect.cleandoc(fn.__doc__ or "")
         missing = [h for h in _HEADINGS if h not in doc]
@@ -95,7 +95,7 @@ def run(robot: Robot, codes: Iterable[str] | None = None, stage: Stage | None = 
 
 def load() -> None:
     """Register every rule module (imported once; a process that forks workers calls it first)."""
-    from . import rules  # noqa: F401
+    from descgen.audit import rules  # noqa: F401
 
 
 def iter_rules() -> Iterator[RuleInfo]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -14,14 +14,14 @@ import jinja2
 from jinja2.exceptions import SecurityError
 from jinja2.sandbox import ImmutableSandboxedEnvironment
 
-from ..cache_dir import cache_folder
-from ..findings import Finding, InputError, Where
-from ..mesh_paths import MESH_FOLDER, own_meshes
-from ..model import Robot
-from ..safeio import MIB, Codes, read_in_folder
-from . import context, escaping, header
-from .escaping import TextEscaping, escape_text
-from .formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
+from descgen.core.cache_dir import cache_folder
+from descgen.core.findings import Finding, InputError, Where
+from descgen.core.model import Robot
+from descgen.infra.safeio import MIB, Codes, read_in_folder
+from descgen.meshes.paths import MESH_FOLDER, own_meshes
+from descgen.render import context, escaping, header
+from descgen.render.escaping import TextEscaping, escape_text
+from descgen.render.formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
 
 XML_TEMPLATES = ("xml.j2", "urdf.j2", "xacro.j2", "srdf.j2")
 
@@ -32,7 +32,7 @@ def default_templates() -> Path:
 
 @functools.cache
 def _bytecode_cache(sandboxed: bool) -> jinja2.BytecodeCache | None:
-    """Compiled templates kept in the user cache folder (descgen/cache_dir.py), like Python's
+    """Compiled templates kept in the user cache folder (descgen/core/cache_dir.py), like Python's
     own __pycache__: compiling the 40-odd templates is half of a warm ``check``. jinja2 keys an
     entry by the template's name and file and recompiles when the source's checksum differs;
     None (compile every time) when caching is off or the folder cannot be made.
@@ -155,7 +155,7 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append(("evidence/known_poses.md", "known_poses.md.j2", False))
     if robot.semantic is not None and robot.semantic.matrix is not None:
         files.append(("evidence/collision_matrix.md", "collision_matrix.md.j2", False))
-        files.append(("evidence/sweep.md", "sweep.md.j2", False))  # descgen/sweep/evidence.py
+        files.append(("evidence/sweep.md", "sweep.md.j2", False))  # descgen/prove/sweep.py
     files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
     return files
 
@@ -174,10 +174,13 @@ def render_package(
     templates: Path | None = None,
     sandboxed: bool = False,
     only: Collection[str] | None = None,
+    sweep: Callable[[Robot], dict[str, Any]] | None = None,
 ) -> dict[str, str]:
     """Every file of ``<robot>_description/``, path -> text, each with its header; or only the
     paths in ``only`` (generate needs the URDF alone before the collision matrix exists, and
-    building the other contexts, the sweep's above all, would be thrown away)."""
+    building the other contexts, the sweep's above all, would be thrown away). ``sweep`` gives
+    the table of evidence/sweep.md (descgen/prove/sweep.py: context), which a robot with a
+    sampled collision matrix has; it is called only when that file is rendered."""
     env = environment(templates, sandboxed)
     wanted = [(path, template, xacro) for path, template, xacro in outputs(robot) if only is None or path in only]
     contexts = {x: context.build(robot, xacro=x) for x in sorted({xacro for _, _, xacro in wanted})}
@@ -185,9 +188,9 @@ def render_package(
         ctx["package"]["install_dirs"] = install_dirs(robot)
     sweep_doc = "evidence/sweep.md"
     if robot.semantic is not None and robot.semantic.matrix is not None and (only is None or sweep_doc in only):
-        from ..sweep import evidence as sweep_evidence  # pinocchio only when no sweep is memoised
-
-        contexts[False]["sweep"] = sweep_evidence.context(robot)
+        if sweep is None:
+            raise ValueError("a robot with a collision matrix renders evidence/sweep.md: pass its sweep table")
+        contexts[False]["sweep"] = sweep(robot)
     out: dict[str, str] = {}
     for path, template, xacro in wanted:
         body = _render(env, template, contexts[xacro], templates)

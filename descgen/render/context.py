@@ -7,14 +7,15 @@ from typing import Any
 import yaml
 from markupsafe import Markup
 
-from .. import derive, display
-from ..importer.passthrough import for_xacro
-from ..mesh_paths import other_packages
-from ..mesh_paths import package_name as package_name  # the one definition, re-exported
-from ..model import CollisionMatrix, DisabledPair, Robot
-from .control_blocks import control_blocks, control_depends
-from .formatting import num, vec, xacro_text
-from .views import Values, items
+from descgen.core import display
+from descgen.core.model import CollisionMatrix, DisabledPair, Robot
+from descgen.meshes.paths import other_packages
+from descgen.meshes.paths import package_name as package_name  # the one definition, re-exported
+from descgen.physics import derive
+from descgen.render.control_blocks import control_blocks, control_depends
+from descgen.render.formatting import num, vec, xacro_text
+from descgen.render.views import Values, items
+from descgen.spec.passthrough import for_xacro
 
 # exec_depends of what the launch files start and what controller_manager loads
 _BASE_DEPENDS = ["joint_state_publisher_gui", "launch", "launch_ros", "robot_state_publisher", "rviz2", "xacro"]
@@ -76,7 +77,7 @@ def _mm3(v: tuple[float, float, float] | None) -> str:
 
 def known_pose_tables(robot: Robot) -> list[dict[str, Any]]:
     """Rows of evidence/known_poses.md, one table per pose."""
-    from ..poses import evaluate
+    from descgen.physics.poses import evaluate
 
     rows = evaluate(robot)
     tables = []
@@ -112,7 +113,7 @@ def known_pose_tables(robot: Robot) -> list[dict[str, Any]]:
 
 def frame_graph(robot: Robot) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
     """Nodes (with diagram-safe ids) and edges of the frame tree, for frames.md and frames.dot."""
-    from ..frames import edges
+    from descgen.physics.frames import edges
 
     es = edges(robot)
     ids: dict[str, str] = {}  # frames in order of first appearance (a dict: 1000 links are 2000 lookups)
@@ -154,7 +155,7 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
     plugin under ``hardware:=gazebo``; a plain URDF gets the block of the model's own plugin,
     and the sim plugin only when that plugin is Gazebo's and ``controllers_file`` is given (the
     proof of the gazebo variant; the committed URDF is the mock variant)."""
-    from ..spec.models import GZ_PLUGIN
+    from descgen.spec.models import GZ_PLUGIN
 
     rc = robot.ros2_control
     text = xacro_text if xacro else str
@@ -207,7 +208,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     disabled: list[DisabledPair] = []
     if sem is not None:
         explicit = {frozenset((d.link1, d.link2)) for d in sem.disabled_collisions}
-        # a sampled matrix (descgen/collision.py) replaces the adjacent-only default
+        # a sampled matrix (descgen/physics/collision.py) replaces the adjacent-only default
         computed = (
             list(sem.matrix.pairs)
             if sem.matrix is not None

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from .. import derive
-from ..model import HardwareBlock, Robot, Ros2Control
-from .formatting import xacro_text
+from descgen.core.model import HardwareBlock, Robot, Ros2Control
+from descgen.physics import derive
+from descgen.render.formatting import xacro_text
 
 
 def in_block(rc: Ros2Control, block: HardwareBlock, owner: str) -> bool:

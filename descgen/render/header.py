@@ -10,8 +10,8 @@ from __future__ import annotations
 import hashlib
 import re
 
-from ..record import record
-from .formatting import comment, visible
+from descgen.core.record import record
+from descgen.render.formatting import comment, visible
 
 MARK = "descgen spec-sha256="
 _HASHES = re.compile(r"descgen spec-sha256=([0-9a-f]{64}) content-sha256=([0-9a-f]{64})")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from ..model import (
+from descgen.core.model import (
     NO_AXIS,
     Box,
     Collision,
@@ -27,8 +27,8 @@ from ..model import (
     Sphere,
     Visual,
 )
-from ..record import record
-from .formatting import num, vec, xacro_text
+from descgen.core.record import record
+from descgen.render.formatting import num, vec, xacro_text
 
 
 @record

@@ -13,20 +13,20 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from .. import model as m
-from .. import units
-from ..findings import Finding
-from ..yamlsource import Document
-from . import models as s
-from . import parts, sensors
-from .convert import Converter
-from .joints import joint
-from .links import link
-from .moveit import moveit
-from .ros2_control import ros2_control
-from .rules import duplicate_materials, duplicate_semantics
-from .semantic import complete_states, known_pose, semantic
-from .sources import cites_sources
+from descgen.core import model as m
+from descgen.core import units
+from descgen.core.findings import Finding
+from descgen.infra.yamlsource import Document
+from descgen.spec import models as s
+from descgen.spec import parts, sensors
+from descgen.spec.convert import Converter
+from descgen.spec.joints import joint
+from descgen.spec.links import link
+from descgen.spec.moveit import moveit
+from descgen.spec.ros2_control import ros2_control
+from descgen.spec.rules import duplicate_materials, duplicate_semantics
+from descgen.spec.semantic import complete_states, known_pose, semantic
+from descgen.spec.sources import cites_sources
 
 
 class Builder:

@@ -12,11 +12,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .. import units
-from ..findings import Finding, Where
-from ..yamlsource import Document, Path_
-from .quantity import Written, convert
-from .sources import sources
+from descgen.core import units
+from descgen.core.findings import Finding, Where
+from descgen.infra.yamlsource import Document, Path_
+from descgen.spec.quantity import Written, convert
+from descgen.spec.sources import sources
 
 # What a joint's limit, value and gains are, by joint type: (value kind, plausibility role).
 POSITION = {

@@ -9,8 +9,8 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..findings import Finding
-from ..yamlsource import Document, Path_
+from descgen.core.findings import Finding
+from descgen.infra.yamlsource import Document, Path_
 
 
 def _strip_annotated(tp: Any) -> Any:

@@ -1,11 +1,12 @@
-"""Which spec files a command was given: a folder stands for the ``*.yaml`` specs in it."""
+"""Which spec files a command was given (a folder stands for the ``*.yaml`` specs in it), and
+where a spec's generated packages go by default."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..findings import Finding, InputError, Where
+from descgen.core.findings import Finding, InputError, Where
 
 
 def expand_specs(paths: Sequence[str]) -> list[str]:
@@ -32,3 +33,9 @@ def expand_specs(paths: Sequence[str]) -> list[str]:
         else:
             out.append(p)
     return out
+
+
+def default_out(spec: Path) -> Path:
+    """``generated/`` beside ``specs/`` (or beside the spec when it is not in a specs folder)."""
+    parent = spec.resolve().parent
+    return parent.parent / "generated" if parent.name == "specs" else parent / "generated"

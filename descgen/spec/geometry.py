@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from .. import model as m
-from . import models as s
+from descgen.core import model as m
+from descgen.spec import models as s
 
 
 def pose(o: s.Origin | None) -> m.Pose:

@@ -1,7 +1,7 @@
 """A link's inertial: explicit, or from its first visual or collision shape.
 
 ``from: collision`` / ``from: visual`` takes the shape's uniform-density tensor about
-its centroid, turned into link axes (``descgen.inertia``); the centre of mass is the
+its centroid, turned into link axes (``descgen.physics.inertia``); the centre of mass is the
 inertial origin if given, else the shape's centroid. A mesh shape must be watertight
 (INER030) and readable (INER031): its solid is integrated triangle by triangle.
 """
@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .. import inertia as mass_props
-from .. import mesh_paths
-from .. import model as m
-from ..findings import Where
-from ..yamlsource import Path_
-from . import models as s
-from .convert import Converter
-from .geometry import pose
+from descgen.core import model as m
+from descgen.core.findings import Where
+from descgen.infra.yamlsource import Path_
+from descgen.meshes import paths as mesh_paths
+from descgen.physics import inertia as mass_props
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
+from descgen.spec.geometry import pose
 
 
 def inertial(
@@ -95,7 +95,9 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
     problem = f"mesh '{mesh.filename}' is not a readable file beside the spec" if file is None else None
     loaded = None
     if file is not None:
-        from .. import meshes  # numpy, and trimesh for some formats: only for a spec with a mesh inertial
+        from descgen.meshes import (
+            load as meshes,  # numpy, and trimesh for some formats: only for a spec with a mesh inertial
+        )
 
         try:
             loaded = meshes.load(file)

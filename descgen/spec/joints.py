@@ -3,11 +3,11 @@ units of the joint type (angles or lengths, N*m or N, rad/s or m/s), and its axi
 
 from __future__ import annotations
 
-from .. import model as m
-from ..yamlsource import Path_
-from . import models as s
-from .convert import ACCELERATION, DAMPING, EFFORT, FRICTION, POSITION, VELOCITY, Converter
-from .geometry import pose
+from descgen.core import model as m
+from descgen.infra.yamlsource import Path_
+from descgen.spec import models as s
+from descgen.spec.convert import ACCELERATION, DAMPING, EFFORT, FRICTION, POSITION, VELOCITY, Converter
+from descgen.spec.geometry import pose
 
 
 def joint(

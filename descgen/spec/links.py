@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from .. import model as m
-from ..findings import Where
-from ..yamlsource import Path_
-from . import models as s
-from .convert import Converter
-from .geometry import geometry, pose
-from .inertial import inertial
+from descgen.core import model as m
+from descgen.core.findings import Where
+from descgen.infra.yamlsource import Path_
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
+from descgen.spec.geometry import geometry, pose
+from descgen.spec.inertial import inertial
 
 
 def link(

@@ -13,20 +13,19 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from .. import collector
-from ..audit import run as run_rules
-from ..findings import Finding, InputError, errors
-from ..mesh_paths import resolve_spec
-from ..model import Robot
-from ..record import record
-from ..units import Range
-from ..yamlsource import Document, Path_, load, loads
-from .build import Builder
-from .errors import data_path, findings_from
-from .models import RobotSpec
-from .plausibility import ranges_from
-from .quantity import MEMO, Measured
-from .rules import derived_package_name, missing_sources
+from descgen.core.findings import Finding, InputError, errors
+from descgen.core.model import Robot
+from descgen.core.record import record
+from descgen.core.units import Range
+from descgen.infra import collector
+from descgen.infra.yamlsource import Document, Path_, load, loads
+from descgen.meshes.paths import resolve_spec
+from descgen.spec.build import Builder
+from descgen.spec.errors import data_path, findings_from
+from descgen.spec.models import RobotSpec
+from descgen.spec.plausibility import ranges_from
+from descgen.spec.quantity import MEMO, Measured
+from descgen.spec.rules import derived_package_name, missing_sources
 
 
 @record
@@ -37,22 +36,27 @@ class Loaded:
     findings: tuple[Finding, ...]  # warnings and infos from the whole-model rules
 
 
-def load_spec(
-    path: str | Path, display: str | None = None, rules: bool = True, package_paths: Sequence[Path] = ()
+# The whole-model rules judge the built robot (descgen/audit/); the caller passes them, since a
+# spec is read below the audit (descgen/audit/spec.py: load_spec, what the commands call).
+Rules = Callable[[Robot], list[Finding]]
+
+
+def read_spec(
+    path: str | Path, display: str | None = None, rules: Rules | None = None, package_paths: Sequence[Path] = ()
 ) -> Loaded:
     """Read, validate and build one spec. Raises :class:`InputError` with every error.
 
-    With ``rules=False`` the whole-model rules are not run (the audit runs them itself
+    Without ``rules`` the whole-model rules are not run (the audit runs them itself
     and reports their errors as findings, not as unusable input). Mesh files are resolved
     beside the spec and in its ``package_paths:`` (then ``package_paths``), see
-    descgen/mesh_paths.py; a spec given as text has no folder, so its meshes are not."""
+    descgen/meshes/paths.py; a spec given as text has no folder, so its meshes are not."""
     p = Path(path)
     with collector.paused():
         doc = load(p, display or str(path))
         return from_document(doc, rules, _Place(p, tuple(package_paths)))
 
 
-def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loaded:
+def read_spec_text(text: str, file: str = "<string>", rules: Rules | None = None) -> Loaded:
     with collector.paused():
         return from_document(loads(text, file), rules)
 
@@ -65,7 +69,7 @@ class _Place:
     package_paths: tuple[Path, ...] = ()
 
 
-def from_document(doc: Document, rules: bool = True, place: _Place | None = None) -> Loaded:
+def from_document(doc: Document, rules: Rules | None = None, place: _Place | None = None) -> Loaded:
     if not isinstance(doc.data, dict):
         raise InputError(
             [
@@ -85,7 +89,7 @@ def from_document(doc: Document, rules: bool = True, place: _Place | None = None
     except ValidationError as exc:
         problems += findings_from(exc, doc, RobotSpec)
         # report the rest of the spec too, in the same run, if the model can still be built
-        problems += _rules_despite(exc, doc, ranges, place) if rules else []
+        problems += _rules_despite(exc, doc, ranges, rules, place) if rules is not None else []
         raise InputError(_ordered(_unique(problems))) from None
     robot, built = _build(doc, spec, ranges, place)
     problems += errors(built)
@@ -93,7 +97,7 @@ def from_document(doc: Document, rules: bool = True, place: _Place | None = None
     problems += errors(named)
     findings = [f for f in named if f.severity != "error"]
     findings += [f for f in built if f.severity != "error"]  # the builder's warnings (SPEC114)
-    findings += run_rules(robot, stage="input") if rules else []
+    findings += rules(robot) if rules is not None else []
     bad = _bad_paths(doc, built)
     if bad:  # a value the builder could not convert: rules judged a stand-in there
         inside = _inside(doc, bad)
@@ -137,7 +141,7 @@ _STAND_INS = (0.0, 0.123)  # SI magnitudes: zero, and a small value plausible fo
 
 
 def _rules_despite(
-    exc: ValidationError, doc: Document, ranges: dict[str, Range], place: _Place | None = None
+    exc: ValidationError, doc: Document, ranges: dict[str, Range], rules: Rules, place: _Place | None = None
 ) -> list[Finding]:
     bad: list[Path_] = []
     drop: list[Path_] = []
@@ -158,7 +162,7 @@ def _rules_despite(
             return []
         robot, built = _build(doc, spec, ranges, place, stand_ins=True)
         inside = _inside(doc, [*bad, *drop, *_bad_paths(doc, built)])
-        judged = [f for f in run_rules(robot, stage="input") if not inside(f)]
+        judged = [f for f in rules(robot) if not inside(f)]
         runs.append(errors([*built, *judged]))
     again = {_key(f) for f in runs[1]}
     return [f for f in runs[0] if _key(f) in again]

@@ -21,7 +21,7 @@ from pydantic import (
     model_validator,
 )
 
-from .quantity import (
+from descgen.spec.quantity import (
     ZERO,
     ZERO_ANGLE,
     Angle,
@@ -891,7 +891,7 @@ class MoveItSpec(Base):
 
 
 def _passthrough_xml(xml: str) -> str:
-    from ..importer.passthrough import problem
+    from descgen.spec.passthrough import problem
 
     why = problem(xml)
     if why is not None:

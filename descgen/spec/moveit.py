@@ -9,11 +9,11 @@ acceleration attribute, so with ``moveit:`` every joint MoveIt plans for needs
 
 from __future__ import annotations
 
-from .. import model as m
-from ..findings import Finding
-from ..moveit.derive import group_joints, unserved
-from . import models as s
-from .convert import Converter
+from descgen.core import model as m
+from descgen.core.findings import Finding
+from descgen.physics.moveit_groups import group_joints, unserved
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
 
 _SECTION = ("moveit",)
 

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .. import model as m
-from . import models as s
-from .convert import Converter
-from .joints import joint
-from .links import link
+from descgen.core import model as m
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
+from descgen.spec.joints import joint
+from descgen.spec.links import link
 
 
 def expand(conv: Converter, parts: list[s.PartSpec]) -> tuple[list[m.Link], list[m.Joint]]:

@@ -3,9 +3,9 @@ the spec so that validation already uses them."""
 
 from __future__ import annotations
 
-from .. import units
-from ..findings import Finding
-from ..yamlsource import Document, Path_
+from descgen.core import units
+from descgen.core.findings import Finding
+from descgen.infra.yamlsource import Document, Path_
 
 
 def ranges_from(doc: Document) -> tuple[dict[str, units.Range], list[Finding]]:

@@ -4,7 +4,7 @@ A quantity field accepts ``"300 mm"`` or ``{value: "300 mm", source: M17}``. Fie
 kind is fixed (a box side is a length) are converted and range-checked here, during
 validation. Fields whose kind depends on something else (a joint limit is an angle or a
 length depending on the joint type) are kept as :class:`Written` and converted by the
-builder with the same :func:`descgen.units.to_si`.
+builder with the same :func:`descgen.core.units.to_si`.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, ValidationInfo, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from .. import display, units
-from ..record import record
+from descgen.core import display, units
+from descgen.core.record import record
 
 QUANTITY_SCHEMA: dict[str, Any] = {
     "anyOf": [

@@ -7,13 +7,13 @@ from __future__ import annotations
 import re
 from collections.abc import Collection, Sequence
 
-from .. import model as m
-from .. import units
-from ..control.claims import FT_INTERFACES, IMU_INTERFACES
-from ..yamlsource import Path_
-from . import models as s
-from .convert import EFFORT, VELOCITY, Converter
-from .quantity import Written
+from descgen.core import model as m
+from descgen.core import units
+from descgen.infra.yamlsource import Path_
+from descgen.physics.control_claims import FT_INTERFACES, IMU_INTERFACES
+from descgen.spec import models as s
+from descgen.spec.convert import EFFORT, VELOCITY, Converter
+from descgen.spec.quantity import Written
 
 _NUMERIC_START = re.compile(r"^\s*[-+]?(\d|\.\d)")
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
-from ..findings import Finding
-from ..yamlsource import Document, Path_
-from . import models as s
-from .quantity import Measured, Written
+from descgen.core.findings import Finding
+from descgen.infra.yamlsource import Document, Path_
+from descgen.spec import models as s
+from descgen.spec.quantity import Measured, Written
 
 
 def duplicate_semantics(doc: Document, sem: s.SemanticSpec) -> list[Finding]:

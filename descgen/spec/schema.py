@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .models import RobotSpec
+from descgen.spec.models import RobotSpec
 
 
 def json_schema() -> dict[str, Any]:

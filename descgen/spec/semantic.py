@@ -7,11 +7,11 @@ import math
 from collections.abc import Mapping
 from dataclasses import replace
 
-from .. import model as m
-from ..yamlsource import Path_
-from . import models as s
-from .convert import Converter
-from .quantity import Written
+from descgen.core import model as m
+from descgen.infra.yamlsource import Path_
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
+from descgen.spec.quantity import Written
 
 
 def known_pose(

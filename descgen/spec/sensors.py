@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import math
 
-from .. import model as m
-from . import models as s
-from .convert import Converter
-from .geometry import pose
-from .links import link
+from descgen.core import model as m
+from descgen.spec import models as s
+from descgen.spec.convert import Converter
+from descgen.spec.geometry import pose
+from descgen.spec.links import link
 
 # REP 103: the optical frame is z forward, x right, y down relative to the body frame
 # (x forward, y left, z up); as fixed-axis rpy this is (-pi/2, 0, -pi/2). See

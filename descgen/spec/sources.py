@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
-from ..yamlsource import Document
-from .quantity import Measured, Written
+from descgen.infra.yamlsource import Document
+from descgen.spec.quantity import Measured, Written
 
 
 def _walk_sources(obj: object) -> list[str]:

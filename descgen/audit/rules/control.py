@@ -7,13 +7,13 @@ from collections import defaultdict
 from collections.abc import Iterator
 from typing import cast
 
-from ...control.claims import JOINT_PARAMS, claims_of, command_pairs, state_pairs
-from ...control.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
-from ...findings import Finding, Where
-from ...model import WITH_LIMITS, Controller, HardwareBlock, Robot
-from ...readers.launch_subst import unresolved
-from ..located import Param
-from ..registry import at, rule
+from descgen.audit.located import Param
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding, Where
+from descgen.core.launch_subst import unresolved
+from descgen.core.model import WITH_LIMITS, Controller, HardwareBlock, Robot
+from descgen.physics.control_claims import JOINT_PARAMS, claims_of, command_pairs, state_pairs
+from descgen.physics.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
 
 _SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
 
@@ -232,7 +232,7 @@ def diff_drive_geometry_disagrees(robot: Robot) -> Iterator[Finding]:
             continue
         if any(unresolved(n) for k in ("left_wheel_names", "right_wheel_names") for n in _list(c.param(k))):
             continue  # the wheels are named by a launch substitution: CTRL052/053 stand for it
-        from ...derive import diff_drive_geometry  # numpy: only for a diff-drive controller
+        from descgen.physics.derive import diff_drive_geometry  # numpy: only for a diff-drive controller
 
         geo = diff_drive_geometry(robot, c)
         for problem in geo.problems:
@@ -252,7 +252,7 @@ def _wheel_values(robot: Robot) -> Iterator[Finding]:
     for c in rc.controllers if rc is not None else ():
         if not c.type.startswith("diff_drive_controller/"):
             continue
-        from ...derive import diff_drive_geometry  # numpy: only for a diff-drive controller
+        from descgen.physics.derive import diff_drive_geometry  # numpy: only for a diff-drive controller
 
         geo = diff_drive_geometry(robot, c)
         for key, derived in (("wheel_separation", geo.wheel_separation), ("wheel_radius", geo.wheel_radius)):

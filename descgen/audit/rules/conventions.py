@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import Robot
-from ...rigid import IDENTITY, Rot, rpy_rot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Robot
+from descgen.physics.rigid import IDENTITY, Rot, rpy_rot
 
 # body (x forward, y left, z up) -> optical (z forward, x right, y down): columns are the
 # optical axes in body coordinates (reference/conventions.md)

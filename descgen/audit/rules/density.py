@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ... import display, inertia, units
-from ...findings import Finding, Severity
-from ...model import Robot
-from ...physics import PLACEHOLDER, PLACEHOLDER_MASS, dims
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core import display, units
+from descgen.core.findings import Finding, Severity
+from descgen.core.model import Robot
+from descgen.physics import inertia
+from descgen.physics.bodies import PLACEHOLDER, PLACEHOLDER_MASS, dims
 
 
 def _density_range(robot: Robot) -> units.Range:

@@ -5,12 +5,12 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...frames import RSP, edges
-from ...model import ONE_DOF, Robot
-from ...readers.launch_subst import unresolved
-from ..located import Param
-from ..registry import at, rule
+from descgen.audit.located import Param
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.launch_subst import unresolved
+from descgen.core.model import ONE_DOF, Robot
+from descgen.physics.frames import RSP, edges
 
 
 @rule("FRAME001", "frame-with-two-owners", "error")
@@ -158,7 +158,7 @@ def desired_on_joint_states(robot: Robot) -> Iterator[Finding]:
             )
     for j in robot.joints:
         if j.type in ONE_DOF:
-            from ...frames import joint_state_feed
+            from descgen.physics.frames import joint_state_feed
 
             feed = joint_state_feed(robot, j.name) or ""
             if feed.count("/joint_states from") > 1:

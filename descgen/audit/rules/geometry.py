@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ... import inertia
-from ...findings import Finding
-from ...model import Collision, Link, MeshState, Robot, Visual
-from ...physics import PLACEHOLDER, dims, moving_links, welded_count
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Collision, Link, MeshState, Robot, Visual
+from descgen.physics import inertia
+from descgen.physics.bodies import PLACEHOLDER, dims, moving_links, welded_count
 
 
 @rule("GEOM001", "moving-link-without-collision", "warning")

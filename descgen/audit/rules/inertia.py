@@ -5,8 +5,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 
-from ... import principal
-from ...extent import (
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding, Severity
+from descgen.core.model import Collision, Inertia, Link, Robot
+from descgen.physics import principal
+from descgen.physics.bodies import moving_links, own_bodies, welded_count
+from descgen.physics.extent import (
     MomentBound,
     bounding_hulls,
     half_trace_by_span,
@@ -15,11 +19,7 @@ from ...extent import (
     span_floor,
     within_shapes,
 )
-from ...findings import Finding, Severity
-from ...model import Collision, Inertia, Link, Robot
-from ...physics import moving_links, own_bodies, welded_count
-from ...rigid import Vec, norm, rpy_rot
-from ..registry import at, rule
+from descgen.physics.rigid import Vec, norm, rpy_rot
 
 
 def _carries_geometry(robot: Robot, link: str) -> bool:
@@ -259,7 +259,7 @@ def inertia_too_small_for_mass(robot: Robot) -> Iterator[Finding]:
 
 def _box_of(collisions: tuple[Collision, ...]) -> tuple[Vec, Vec] | None:
     """Axis-aligned box around a link's collision primitives, in the link frame."""
-    from ...model import Box, Cylinder, Sphere
+    from descgen.core.model import Box, Cylinder, Sphere
 
     lows: list[Vec] = []
     highs: list[Vec] = []

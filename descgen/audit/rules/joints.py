@@ -5,13 +5,13 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import ONE_DOF, WITH_AXIS, WITH_LIMITS, Joint, Robot
-from ...naming import mirror_name
-from ...physics import static_load, subtree_loads
-from ...rigid import dot, norm, rotate
-from ...zero_pose import at_zero
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import ONE_DOF, WITH_AXIS, WITH_LIMITS, Joint, Robot
+from descgen.core.naming import mirror_name
+from descgen.physics.bodies import static_load, subtree_loads
+from descgen.physics.rigid import dot, norm, rotate
+from descgen.physics.zero_pose import at_zero
 
 
 @rule("JOINT001", "zero-axis", "error")
@@ -180,7 +180,7 @@ def bad_mimic(robot: Robot) -> Iterator[Finding]:
 
 def _mimic_problem(robot: Robot, j: Joint) -> str | None:
     """Why no joint drives ``j``'s mimic chain (a cycle, a missing joint at its end), or None."""
-    from ...mimic import problem
+    from descgen.physics.mimic import problem
 
     found = problem(robot, j.name)
     return found.message if found is not None and found.joint is j else None
@@ -290,7 +290,7 @@ def implausible_prismatic_travel(robot: Robot) -> Iterator[Finding]:
     ## Use instead
     `<limit lower="0" upper="0.04" .../>` (metres); in a spec, write the unit: `upper: 40 mm`.
     """
-    from ...extent import robot_span
+    from descgen.physics.extent import robot_span
 
     travels = [
         (j, lm, max(abs(lm.lower or 0.0), abs(lm.upper or 0.0)))

@@ -1,6 +1,6 @@
 """GEOM (mesh contents): what the mesh files say, once they resolve and are read.
 
-The facts come from ``descgen.meshes``, for the files in ``Robot.mesh_files``: a mesh that did not resolve
+The facts come from ``descgen.meshes.load``, for the files in ``Robot.mesh_files``: a mesh that did not resolve
 has none, and these rules stay silent about it (GEOM003-GEOM005 report the path).
 """
 
@@ -9,12 +9,19 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...meshes import MeshFacts, MeshShape, box_in_metres, facts_of_robot, mesh_shapes, size_in_metres
-from ...model import Collision, Link, Mesh, Robot, Visual
-from ...physics import PLACEHOLDER_MASS, dims, robot_scale
-from ...rigid import Vec, frame, norm, placed_box
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Collision, Link, Mesh, Robot, Visual
+from descgen.meshes.facts import MeshFacts
+from descgen.meshes.load import (
+    MeshShape,
+    box_in_metres,
+    facts_of_robot,
+    mesh_shapes,
+    size_in_metres,
+)
+from descgen.physics.bodies import PLACEHOLDER_MASS, dims, robot_scale
+from descgen.physics.rigid import Vec, frame, norm, placed_box
 
 Box3 = tuple[Vec, Vec]  # (low, high) corners of an axis-aligned box
 

@@ -12,10 +12,16 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ...findings import Finding, Where
-from ...model import ONE_DOF, WITH_LIMITS, Joint, Robot
-from ...moveit_model import CONTROLLER_TYPES, JointLimits, MoveItConfig, MoveItController, TypeProblem
-from ..registry import RULES, rule
+from descgen.audit.registry import RULES, rule
+from descgen.core.findings import Finding, Where
+from descgen.core.model import ONE_DOF, WITH_LIMITS, Joint, Robot
+from descgen.core.moveit_model import (
+    CONTROLLER_TYPES,
+    JointLimits,
+    MoveItConfig,
+    MoveItController,
+    TypeProblem,
+)
 
 EPS = 2.220446049250313e-16  # robot_model.cpp: a URDF velocity is a bound when > DBL_EPSILON
 KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"

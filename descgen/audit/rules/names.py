@@ -5,9 +5,9 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import Joint, Link, Robot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Joint, Link, Robot
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ... import mimic
-from ...findings import Finding
-from ...model import ONE_DOF, Joint, KnownPose, Robot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import ONE_DOF, Joint, KnownPose, Robot
+from descgen.physics import mimic
 
 
 def _frames(robot: Robot) -> set[str]:
@@ -91,7 +91,7 @@ def known_pose_mismatch(robot: Robot) -> Iterator[Finding]:
     """
     if not robot.known_poses:
         return  # a URDF never has any: no need for the numpy kinematics below
-    from ...poses import findings
+    from descgen.physics.poses import findings
 
     yield from findings(robot)
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import Mesh, Robot
-from ...physics import dims, robot_scale
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Mesh, Robot
+from descgen.physics.bodies import dims, robot_scale
 
 FACTOR = 50.0  # ×1000 mistakes land far beyond this; real designs stay far below it
 FLOOR = 1.0  # metres: never flag anything shorter

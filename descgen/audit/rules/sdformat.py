@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import MULTI_DOF, WITH_LIMITS, Joint, Robot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import MULTI_DOF, WITH_LIMITS, Joint, Robot
 
 
 def _lumped(robot: Robot, j: Joint) -> bool:

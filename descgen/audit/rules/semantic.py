@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import ONE_DOF, Group, Robot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import ONE_DOF, Group, Robot
 
 
 def _is_ancestor(robot: Robot, anc: str, desc: str) -> bool:

@@ -5,9 +5,9 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator
 
-from ...findings import Finding
-from ...model import Robot
-from ..registry import at, rule
+from descgen.audit.registry import at, rule
+from descgen.core.findings import Finding
+from descgen.core.model import Robot
 
 
 def _isolated(robot: Robot) -> set[str]:

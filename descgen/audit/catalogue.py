@@ -1,0 +1,31 @@
+"""Every finding code descgen can report, as ``descgen rules`` and SARIF list them: the audit
+rules (registered by ``@rule`` in descgen/audit/rules/) beside the codes the other stages
+register in descgen/codes/. The audit layer is the lowest that sees both."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from descgen.audit.registry import iter_rules
+from descgen.codes import CODES, GROUPS, Entry, doc_of
+
+
+def _rules() -> dict[str, Entry]:
+    return {
+        r.code: Entry(r.code, r.name, r.severity, "rule", r.summary or r.name, r.doc.strip() + "\n")
+        for r in iter_rules()
+    }
+
+
+def explain(code: str) -> Entry | None:
+    """The catalogue entry for ``code`` (an audit rule or a registered code), or None."""
+    return next((e for e in entries() if e.code == code), None)
+
+
+def entries() -> Iterator[Entry]:
+    """Every code, grouped as in GROUPS, then by code."""
+    both = dict(_rules())
+    for code, c in CODES.items():
+        both[code] = Entry(c.code, c.name, c.severity, c.group, c.summary, doc_of(c))
+    order = list(GROUPS)
+    yield from sorted(both.values(), key=lambda e: (order.index(e.group), e.code))

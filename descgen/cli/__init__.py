@@ -1,0 +1,825 @@
+"""The ``descgen`` command: parse arguments, call the library, print, choose the exit code.
+
+Exit codes: 0 ok, 1 a check failed (or findings with errors), 2 unusable input.
+Only this module maps :class:`InputError` to 2; any other exception is a bug.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import dataclasses
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, NoReturn
+
+from descgen import __version__
+from descgen.cli import arguments as types
+from descgen.commands import text as cli_format
+from descgen.core.findings import Finding, InputError, Where, summary
+from descgen.infra import collector
+from descgen.output import report
+
+if TYPE_CHECKING:
+    from descgen.read.description import Options
+
+EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
+
+
+def exit_code(findings: Sequence[Finding], input_error: bool = False, strict: bool = False) -> int:
+    """0 clean, 1 errors (or warnings with ``strict``), 2 unusable input."""
+    if input_error:
+        return EXIT_INPUT
+    bad = {"error", "warning"} if strict else {"error"}
+    return EXIT_FAILED if any(f.severity in bad for f in findings) else EXIT_OK
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    _settled_import("descgen.audit.spec")
+    from descgen.audit.spec import load_spec
+    from descgen.spec.files import expand_specs
+
+    all_findings: list[Finding] = []
+    per_spec: list[tuple[str, list[Finding], str]] = []
+    failed = False
+    for path in expand_specs(args.spec):
+        try:
+            loaded = load_spec(path, package_paths=tuple(args.package_path or ()))
+        except InputError as exc:
+            all_findings.extend(exc.findings)
+            per_spec.append((str(path), list(exc.findings), ""))
+            failed = True
+            continue
+        all_findings.extend(loaded.findings)
+        per_spec.append((str(path), list(loaded.findings), ""))
+        if args.format == "text":
+            sys.stderr.write(report.text(loaded.findings))
+            print(cli_format.validated(path, loaded.robot))
+    if args.format == "json":
+        sys.stdout.write(report.as_json(all_findings))
+    elif args.format == "junit":
+        sys.stdout.write(report.junit("validate", per_spec))
+    elif failed:
+        sys.stderr.write(report.text(f for f in all_findings if f.severity == "error"))
+    return EXIT_INPUT if failed else EXIT_OK
+
+
+def _cmd_generate(args: argparse.Namespace) -> int:
+    _settled_import("descgen.commands.generate")
+    from descgen.commands.generate import generate
+    from descgen.infra.progress import wanted
+    from descgen.spec.files import expand_specs
+
+    worst = EXIT_OK
+    for spec in expand_specs(args.spec):
+        outcome = generate(Path(spec), args.out, args.templates, args.force, tuple(args.package_path or ()), wanted())
+        sys.stderr.write(report.text(outcome.findings))
+        if outcome.failed:
+            print(f"{spec}: nothing written: a check failed", file=sys.stderr)
+            worst = max(worst, EXIT_FAILED)
+            continue
+        print(
+            f"{spec}: wrote {len(outcome.written)} files, {len(outcome.unchanged)} unchanged"
+            + (f", removed {len(outcome.removed)}" if outcome.removed else "")
+        )
+        for rel in outcome.written:
+            print(f"  wrote {rel}")
+    return worst
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    _settled_import("descgen.commands.generate")
+    from descgen.commands.generate import check
+    from descgen.spec.files import expand_specs
+
+    worst = EXIT_OK
+    junit = args.format == "junit"
+    per_spec: list[tuple[str, list[Finding], str]] = []
+    for spec in expand_specs(args.spec):
+        try:
+            outcome = check(
+                Path(spec),
+                args.out,
+                args.templates,
+                package_paths=tuple(args.package_path or ()),
+                thorough=args.thorough,
+            )
+        except InputError as exc:
+            if not junit:
+                raise
+            per_spec.append((str(spec), list(exc.findings), ""))
+            worst = EXIT_INPUT
+            continue
+        if junit:
+            per_spec.append((str(spec), list(outcome.findings), outcome.diff))
+        elif outcome.diff:
+            sys.stdout.write(report.lines_text(outcome.diff))
+        if not junit:
+            sys.stderr.write(report.text(outcome.findings))
+        if outcome.failed:
+            worst = max(worst, EXIT_FAILED)
+        elif not junit:
+            print(f"{spec}: generated files are up to date and every check passed")
+    if junit:
+        sys.stdout.write(report.junit("check", per_spec))
+    return worst
+
+
+def _cmd_report(args: argparse.Namespace) -> int:
+    from descgen.commands.generate import check
+
+    outcome = check(Path(args.spec), args.out, write_page=True)
+    sys.stderr.write(report.text(outcome.findings))
+    if outcome.failed:
+        print(f"{args.spec}: evidence page not written", file=sys.stderr)
+        return EXIT_FAILED
+    for rel in outcome.written:
+        print(f"wrote {rel}")
+    return EXIT_OK
+
+
+def _cmd_view(args: argparse.Namespace) -> int:
+    import threading
+
+    from descgen.commands.view import load, require_viser
+    from descgen.commands.view.server import start
+
+    robot, urdf = load(Path(args.path), tuple(args.package_path or ()))  # bad input first: exit 2 at the file
+    require_viser()
+    viewer = start(robot, urdf, args.host, args.port, Path(args.path).resolve().parent)
+    try:  # from here on Ctrl-C stops the server and exits 0
+        if args.host not in ("127.0.0.1", "::1"):
+            print(f"warning: bound to {args.host}: anyone who can reach it can see the robot", file=sys.stderr)
+        print(f"descgen view: {robot.name} at {viewer.url} (Ctrl-C to stop)", flush=True)
+        threading.Event().wait()  # viser serves from its own thread
+    except KeyboardInterrupt:
+        print("descgen view: stopped", file=sys.stderr)
+    finally:
+        viewer.close()
+    return EXIT_OK
+
+
+def _cmd_poses(args: argparse.Namespace) -> int:
+    from descgen.audit.spec import load_spec
+    from descgen.physics.poses import evaluate, findings
+
+    loaded = load_spec(args.spec)
+    rows = evaluate(loaded.robot)
+    found = findings(loaded.robot, rows)
+    if args.format == "json":
+        sys.stdout.write(report.as_json(found, poses=cli_format.poses_json(rows)))
+    else:
+        sys.stdout.write(cli_format.poses_table(rows))
+        sys.stderr.write(report.text(found))
+    return exit_code(found)
+
+
+def _description_options(args: argparse.Namespace) -> Options:
+    from descgen.read.description import Options
+
+    if args.launch_arg and args.controllers is None:
+        # only a controllers YAML named with --controllers is read with launch arguments; a value
+        # that changes nothing would let a user believe a $(var) was checked
+        raise InputError(
+            [
+                Finding(
+                    "CTRL055",
+                    "error",
+                    "--launch-arg is given without --controllers; launch arguments are used only for the "
+                    "$(var NAME) substitutions of the controllers YAML named by --controllers",
+                    "add --controllers FILE, or drop --launch-arg",
+                    "option",
+                    types.COMMAND_LINE,
+                )
+            ]
+        )
+    return Options(
+        args.srdf,
+        args.controllers,
+        dict(args.xacro_arg or []),
+        tuple(args.package_path or []),
+        args.trust_xacro,
+        launch_args=dict(args.launch_arg or []),
+    )
+
+
+def _cmd_audit(args: argparse.Namespace) -> int:
+    from descgen.infra.progress import counting, wanted
+    from descgen.read.description import audit_paths
+
+    options = dataclasses.replace(_description_options(args), moveit_config=args.moveit_config)
+    paths = [Path(p) for p in args.path]
+    show = wanted(args.format == "text") and len(paths) > 1
+    with counting(len(paths), "audit", "file", show) as step:
+        found, unusable = audit_paths(paths, options, args.jobs, step)
+    if args.format == "json":
+        sys.stdout.write(report.as_json(found))
+    elif args.format == "sarif":
+        sys.stdout.write(report.sarif(found, base=str(Path.cwd())))
+    elif args.format == "junit":
+        sys.stdout.write(report.junit("audit", _by_input(args.path, found), strict=args.strict))
+    else:
+        sys.stderr.write(report.text(found))
+        counts = ", ".join(f"{n} {k}" for k, n in summary(found).items())
+        print(f"audited {len(args.path)} description(s): {counts}")
+    return exit_code(found, input_error=unusable, strict=args.strict)
+
+
+def _by_input(paths: Sequence[str], found: Sequence[Finding]) -> list[tuple[str, list[Finding], str]]:
+    """Findings grouped by the file they are in: one group per input named (a clean input has
+    one too), then one per other file a finding points at (an SRDF, an included Xacro)."""
+    groups: dict[str, list[Finding]] = {p: [] for p in paths}
+    for f in found:
+        file = f.where.file.removesuffix(" (expanded)")
+        if file == "<unknown>" and paths:
+            file = paths[0]
+        groups.setdefault(file, []).append(f)
+    return [(name, fs, "") for name, fs in groups.items()]
+
+
+def _cmd_import(args: argparse.Namespace) -> int:
+    from descgen.commands.importer.run import ImportOptions, import_description
+
+    out: Path | None = args.output
+    if out is not None:
+        from descgen.commands.importer.run import refuse_unsafe_output
+
+        refuse_unsafe_output(out)  # a link, FIFO or device: never replaced, --force or not
+    if out is not None and out.exists() and not args.force:
+        raise InputError(
+            [
+                Finding(
+                    "IMP007",
+                    "error",
+                    f"{out} exists; import does not overwrite a spec",
+                    "choose another -o file, or pass --force to replace it",
+                    "option",
+                    Where(str(out)),
+                )
+            ]
+        )
+    from descgen.commands.importer.variants import Variant
+
+    variants = tuple(Variant(n, a) for n, a in args.variant or [])
+    opts = ImportOptions(_description_options(args), args.units, str(out) if out else "imported.yaml", variants)
+    result = import_description(Path(args.path), opts)
+    imp = result.imported
+    sys.stderr.write(report.text(imp.audit + imp.report + result.invalid + imp.differences))
+    if imp.differences:
+        print(f"import: round trip differs at {len(imp.differences)} place(s); nothing written", file=sys.stderr)
+        return EXIT_FAILED
+    if out is None:
+        sys.stdout.write(imp.spec_text)
+    else:
+        from descgen.commands.importer.run import write_spec
+
+        write_spec(out, imp.spec_text)
+    print(cli_format.import_summary(result, str(out) if out else "stdout"), file=sys.stderr)
+    return EXIT_OK
+
+
+def _cmd_faults(args: argparse.Namespace) -> int:
+    from descgen.commands.faults import plant_all
+    from descgen.read.description import load_description
+
+    robot, _ = load_description(Path(args.path), _description_options(args))
+    results = plant_all(robot)
+    if args.format == "json":
+        sys.stdout.write(json.dumps(cli_format.faults_json(args.path, results), indent=2) + "\n")
+    else:
+        sys.stdout.write(cli_format.faults_text(results))
+    return EXIT_FAILED if any(r.applicable and not r.caught for r in results) else EXIT_OK
+
+
+def _cmd_frames(args: argparse.Namespace) -> int:
+    from descgen.audit import run
+    from descgen.physics.frames import edges
+    from descgen.read.description import load_description
+
+    robot, _ = load_description(Path(args.path), _description_options(args))
+    es = edges(robot)
+    found = [f for f in run(robot) if f.code.startswith("FRAME")]
+    if args.format == "json":
+        sys.stdout.write(report.as_json(found, frames=cli_format.frames_json(es)))
+    else:
+        sys.stdout.write(cli_format.frames_tree(es))
+        sys.stderr.write(report.text(found))
+    return exit_code(found)
+
+
+def _cmd_tf_audit(args: argparse.Namespace) -> int:
+    from descgen.commands.tf.bagaudit import audit_each
+    from descgen.infra.progress import wanted
+
+    bags = [Path(b) for b in args.bag]
+    topics = tuple(args.topic or ())
+    show = wanted(args.format == "text")
+    outcomes = audit_each(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
+    errors = [f for _, found in outcomes for f in found]
+    reps = [rep for rep, _ in outcomes if rep is not None]
+    if errors and not reps:
+        raise InputError(errors)  # nothing to report: exit 2, as for one recording
+    if args.format == "json":
+        sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, outcomes), indent=2) + "\n")
+    else:
+        sys.stdout.write(cli_format.tf_audit_texts(args.bag, outcomes, args.target))
+    if errors:  # the readable recordings are reported above; the unreadable one is exit 2
+        raise InputError(errors)
+    return EXIT_FAILED if any(rep.lookups - rep.counts["ok"] for rep in reps) else EXIT_OK
+
+
+def _cmd_tf_scenario(args: argparse.Namespace) -> int:
+    from descgen.audit.spec import load_spec
+    from descgen.commands.tf.scenario import write
+
+    robot = load_spec(args.spec).robot
+    counts = write(robot, args.out, tuple(args.fault or ()), args.duration, args.storage)
+    print(f"wrote {args.out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
+    return EXIT_OK
+
+
+def _cmd_control(args: argparse.Namespace) -> int:
+    from descgen.audit.spec import load_spec
+    from descgen.commands.control.evidence import evidence_folder, write_evidence
+    from descgen.commands.control.load import find_package
+    from descgen.commands.control.run import run
+    from descgen.commands.control.system import Plant, plant_faults
+    from descgen.commands.control.trajectory import read_trajectory
+
+    robot = load_spec(args.spec).robot
+    package = find_package(Path(args.spec), robot, args.package)
+    faults = plant_faults(args.plant_fault or [], args.plant, robot)
+    trajectory = read_trajectory(args.trajectory, robot)
+    out = run(package, robot, trajectory, args.duration, Plant(args.plant, faults=faults, noise=0.0))
+    folder = args.out or evidence_folder(package, args.plant, faults)
+    written = write_evidence(out, folder, robot, package=package)
+    verdict = out.verdict()
+    sys.stdout.write(cli_format.control_text(written, folder, verdict))
+    sys.stderr.write(report.text(out.findings()))
+    return EXIT_OK if verdict["ok"] else EXIT_FAILED
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from descgen.commands.simulate import Settings, simulate_description
+
+    settings = Settings(seconds=args.seconds, pose=args.pose, base=args.base)
+    outcome = simulate_description(Path(args.path), _description_options(args), settings)
+    if args.format == "json":
+        sys.stdout.write(report.as_json(outcome.findings, simulate=outcome.report))
+    else:
+        sys.stdout.write(cli_format.simulate_text(args.path, outcome.report))
+        sys.stderr.write(report.text(outcome.findings))
+    return exit_code(outcome.findings)
+
+
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    from descgen.commands.sweep import sweep_description
+    from descgen.infra.progress import wanted
+    from descgen.physics.sweep import Settings, as_dict, text
+
+    tty = wanted(args.format == "text")  # progress on a terminal only: not in a log, a pipe, CI or JSON
+
+    def progress(line: str) -> None:
+        sys.stderr.write(f"\r\x1b[K{line}")
+        sys.stderr.flush()
+
+    result, found = sweep_description(
+        Path(args.path), _description_options(args), Settings(args.state, args.steps), progress if tty else None
+    )
+    if tty:
+        sys.stderr.write("\r\x1b[K")
+    if args.format == "json":
+        sys.stdout.write(report.as_json(found, sweep=as_dict(result)))
+    else:
+        sys.stdout.write(text(result))
+        sys.stderr.write(report.text(found))
+    return exit_code(found, strict=args.strict)
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    from descgen.spec.schema import json_schema
+
+    sys.stdout.write(json.dumps(json_schema(), indent=2) + "\n")
+    return EXIT_OK
+
+
+def _cmd_rules(args: argparse.Namespace) -> int:
+    """Every code any command prints (audit rules and the rest), or one code's explanation."""
+    from descgen.audit.catalogue import entries, explain
+    from descgen.codes import GROUPS
+
+    if args.code:
+        entry = explain(args.code)
+        assert entry is not None  # cli_types.rule_code refused unknown codes
+        print(f"{entry.code} {entry.name} ({entry.severity}; {GROUPS[entry.group]})\n{entry.doc}", end="")
+        return EXIT_OK
+    for e in entries():
+        if args.group and e.group != args.group:
+            continue
+        print(f"{e.code}  {e.severity:<7}  {e.group:<9}  {e.name}: {e.summary}")
+    return EXIT_OK
+
+
+# -- bounds of the time options, looked up only when the option is given -----------------------
+
+
+def _scenario_bounds() -> tuple[float, float]:
+    from descgen.commands.tf.scenario import MAX_DURATION_S, MIN_DURATION_S
+
+    return MIN_DURATION_S, MAX_DURATION_S
+
+
+def _control_bounds() -> tuple[float, float]:
+    from descgen.commands.control.trajectory import MAX_DURATION_S, MIN_DURATION_S
+
+    return MIN_DURATION_S, MAX_DURATION_S
+
+
+def _simulate_bounds() -> tuple[float, float]:
+    from descgen.commands.simulate import MAX_SECONDS, MIN_SECONDS
+
+    return MIN_SECONDS, MAX_SECONDS
+
+
+def _wait_bounds() -> tuple[float, float]:
+    from descgen.commands.tf.bagaudit import MAX_WAIT_S
+
+    return 0.0, MAX_WAIT_S
+
+
+def description_options(p: argparse.ArgumentParser) -> None:
+    """The options that say how to read a description someone else wrote."""
+    p.add_argument("--srdf", type=types.path, help="SRDF of the robot")
+    p.add_argument("--controllers", type=types.path, help="controller_manager YAML of the robot")
+    p.add_argument(
+        "--xacro-arg",
+        action="append",
+        type=types.xacro_arg,
+        metavar="NAME:=VALUE",
+        help="argument for a Xacro (repeatable)",
+    )
+    p.add_argument(
+        "--launch-arg",
+        action="append",
+        type=types.launch_arg,
+        metavar="NAME:=VALUE",
+        help="value of a $(var NAME) launch substitution in the controllers YAML (repeatable)",
+    )
+    p.add_argument(
+        "--package-path",
+        action="append",
+        type=types.folder,
+        metavar="DIR",
+        help="folder holding ROS packages, for $(find) and package:// (repeatable)",
+    )
+    p.add_argument(
+        "--trust-xacro",
+        action="store_true",
+        help="expand Xacro with xacro's own evaluator, which runs the file's Python and reads any file and "
+        "environment variable; only for files you trust (default: a restricted evaluator, see docs/security.md)",
+    )
+
+
+def spec_package_path(p: argparse.ArgumentParser) -> None:
+    """--package-path for the commands that load a spec: where its package:// meshes of other
+    packages are (after the spec's package_paths:); only these folders are read besides the spec's."""
+    p.add_argument(
+        "--package-path",
+        action="append",
+        type=types.folder,
+        metavar="DIR",
+        help="folder holding the ROS packages that package:// meshes name (repeatable)",
+    )
+
+
+def _code_groups() -> list[str]:
+    from descgen.codes import GROUPS
+
+    return list(GROUPS)
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse, printing a bad option value that has a finding code as findings are printed.
+
+    argparse turns the :class:`~descgen.cli.arguments.OptionError` a ``type=`` callable raised into
+    an ``ArgumentError`` and calls :meth:`error` while handling it, so the finding is the
+    handled exception's context. Anything else (an unknown option, a bad choice, a value
+    without a code) keeps argparse's usage message. Both exit 2."""
+
+    def error(self, message: str) -> NoReturn:
+        handled = sys.exc_info()[1]
+        bad = handled.__context__ if handled is not None else None
+        if not isinstance(bad, types.OptionError):
+            super().error(message)
+        sys.stderr.write(report.text([bad.finding]))
+        self.exit(EXIT_INPUT)
+
+
+def parser() -> argparse.ArgumentParser:
+    p = Parser(prog="descgen", description="Robot descriptions from measured specs, proven.")
+    p.add_argument("--version", action="version", version=f"descgen {__version__}")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    v = sub.add_parser("validate", help="check specs (schema, units, whole-model rules); write nothing")
+    v.add_argument("spec", nargs="+")
+    v.add_argument("--format", choices=("text", "json", "junit"), default="text")
+    spec_package_path(v)
+    v.set_defaults(fn=_cmd_validate)
+
+    g = sub.add_parser("generate", help="write generated/<robot>_description/ if every check passes")
+    g.add_argument("spec", nargs="+")
+    g.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    g.add_argument(
+        "--templates", type=types.templates_folder, help="folder of templates that override the defaults by file name"
+    )
+    g.add_argument("--force", action="store_true", help="overwrite files that were edited by hand")
+    spec_package_path(g)
+    g.set_defaults(fn=_cmd_generate)
+
+    c = sub.add_parser("check", help="regenerate in memory, compare with the files on disk, run the checks")
+    c.add_argument("spec", nargs="+")
+    c.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    c.add_argument("--templates", type=types.templates_folder, help="folder of template overrides")
+    c.add_argument(
+        "--format",
+        choices=("text", "junit"),
+        default="text",
+        help="junit: JUnit XML on stdout (a test suite per spec; the diff of stale files in its failure)",
+    )
+    spec_package_path(c)
+    c.add_argument(
+        "--thorough",
+        action="store_true",
+        help="also read the URDF back with yourdfpy (slower to start: it imports trimesh and scipy)",
+    )
+    c.set_defaults(fn=_cmd_check)
+
+    a = sub.add_parser("audit", help="audit specs, URDFs or Xacros (with an SRDF and controllers YAML)")
+    a.add_argument("path", nargs="+")
+    description_options(a)
+    a.add_argument(
+        "--moveit-config",
+        type=types.folder,
+        metavar="DIR",
+        help="a MoveIt config package to audit with the robot (its SRDF and ros2_controllers.yaml unless given)",
+    )
+    a.add_argument("--format", choices=("text", "json", "sarif", "junit"), default="text")
+    a.add_argument("--strict", action="store_true", help="warnings count as errors")
+    a.add_argument(
+        "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"
+    )
+    a.set_defaults(fn=_cmd_audit)
+
+    im = sub.add_parser("import", help="a URDF or Xacro (+ SRDF) -> a spec with sources, proven by a round trip")
+    im.add_argument("path")
+    description_options(im)
+    im.add_argument("-o", "--output", type=types.path, help="spec file to write (default: print the spec)")
+    im.add_argument(
+        "--units", type=types.import_units, default=types.import_units("mm,deg,kg"), help="mm,deg,kg (default) or si"
+    )
+    im.add_argument("--force", action="store_true", help="replace an existing -o file")
+    im.add_argument(
+        "--variant",
+        action="append",
+        type=types.variant,
+        metavar="NAME:[ARG:=VALUE,...]",
+        help="a hardware variant (mock, gazebo, real) and the Xacro args that select it; repeat per variant",
+    )
+    im.set_defaults(fn=_cmd_import)
+
+    f = sub.add_parser("faults", help="plant each fault of the catalogue in a copy and audit it")
+    f.add_argument("path")
+    description_options(f)
+    f.add_argument("--format", choices=("text", "json"), default="text")
+    f.set_defaults(fn=_cmd_faults)
+
+    fr = sub.add_parser("frames", help="the transform tree with the publisher of every edge")
+    fr.add_argument("path")
+    description_options(fr)
+    fr.add_argument("--format", choices=("text", "json"), default="text")
+    fr.set_defaults(fn=_cmd_frames)
+
+    ta = sub.add_parser("tf-audit", help="look up every sensor message of a rosbag2 recording at its stamp")
+    ta.add_argument("bag", nargs="+", help="rosbag2 folder (MCAP or sqlite3); several are audited one by one")
+    ta.add_argument(
+        "--jobs", type=types.jobs, default=1, help="audit this many recordings at once, in separate processes"
+    )
+    ta.add_argument("--target", required=True, help="frame to look every message up in (e.g. odom)")
+    ta.add_argument("--topic", action="append", help="sensor topic (repeatable; default: every topic with a header)")
+    ta.add_argument(
+        "--wait",
+        default="0 ms",
+        type=types.Nanoseconds("--wait", _wait_bounds),
+        help="how long a consumer waits for transforms (e.g. '50 ms'; at most 1 h)",
+    )
+    ta.add_argument(
+        "--max-age",
+        type=types.Nanoseconds("--max-age", _wait_bounds),
+        help="flag interpolation across samples farther than this (e.g. '100 ms'; at most 1 h)",
+    )
+    ta.add_argument("--format", choices=("text", "json"), default="text")
+    ta.set_defaults(fn=_cmd_tf_audit)
+
+    sc = sub.add_parser("tf-scenario", help="write a short recording of the robot, optionally with planted faults")
+    sc.add_argument("spec")
+    sc.add_argument("--out", required=True, type=types.path, help="new rosbag2 folder to write")
+    sc.add_argument("--fault", action="append", choices=("camera-future", "odom-gap", "unknown-frame"))
+    sc.add_argument(
+        "--duration",
+        default="10 s",
+        type=types.Duration("--duration", _scenario_bounds),
+        help="length of the recording, e.g. '10 s' (a bare number is seconds; at most 10 min)",
+    )
+    sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
+    sc.set_defaults(fn=_cmd_tf_scenario)
+
+    co = sub.add_parser("control", help="run a trajectory through a model of ros2_control (lifecycle, claims, loop)")
+    co.add_argument("spec")
+    co.add_argument("--trajectory", required=True, type=types.path)
+    co.add_argument(
+        "--duration",
+        type=types.Duration("--duration", _control_bounds),
+        help="simulated time, e.g. '8 s' (a bare number is seconds; at most 10 min; default: the trajectory plus 1 s)",
+    )
+    co.add_argument("--plant", choices=("mock", "sim"), default="mock")
+    co.add_argument(
+        "--plant-fault",
+        action="append",
+        type=types.plant_fault,
+        metavar="JOINT:=stuck|offset|reversed",
+        help="plant a fault in a joint of the simulated plant (repeatable; needs --plant sim)",
+    )
+    co.add_argument(
+        "--package",
+        type=types.path,
+        help="the generated package, or the output root that `generate --out` wrote it under "
+        "(default: generated/ beside specs/)",
+    )
+    co.add_argument(
+        "--out",
+        type=types.path,
+        help="folder for the evidence (default: the package's evidence/ for a mock run; "
+        "a new scratch folder for an experiment with --plant sim or --plant-fault)",
+    )
+    co.set_defaults(fn=_cmd_control)
+
+    si = sub.add_parser("simulate", help="compile the robot with MuJoCo and hold it at a pose under gravity")
+    si.add_argument("path", help="spec, URDF or Xacro")
+    si.add_argument(
+        "--seconds",
+        default="2 s",
+        type=types.Duration("--seconds", _simulate_bounds),
+        help="simulated time of the gravity run, e.g. '2 s' (a bare number is seconds; at most 10 s)",
+    )
+    si.add_argument("--pose", help="known pose or SRDF group state to hold (default: every joint at zero)")
+    si.add_argument(
+        "--base",
+        choices=("fixed", "floor"),
+        help="fixed to the world, or free on a ground plane (default: floor for a robot whose SRDF virtual "
+        "joint is planar or floating or whose root link is base_footprint)",
+    )
+    description_options(si)
+    si.add_argument("--format", choices=("text", "json"), default="text")
+    si.set_defaults(fn=_cmd_simulate)
+
+    sw = sub.add_parser("sweep", help="each joint through its range: which way it moves the robot, what collides")
+    sw.add_argument("path", help="spec, URDF or Xacro")
+    sw.add_argument(
+        "--state",
+        help="group state or known pose the other joints hold (default: the collision matrix's state, else zero)",
+    )
+    sw.add_argument(
+        "--steps", type=types.sweep_steps, default=36, help="steps per joint, both limits included (default 36)"
+    )
+    description_options(sw)
+    sw.add_argument("--format", choices=("text", "json"), default="text")
+    sw.add_argument("--strict", action="store_true", help="exit 1 on warnings too (a collision on the way)")
+    sw.set_defaults(fn=_cmd_sweep)
+
+    rp = sub.add_parser("report", help="write evidence/README.md: every proof of the package on one page")
+    rp.add_argument("spec")
+    rp.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    rp.set_defaults(fn=_cmd_report)
+
+    vw = sub.add_parser("view", help="the robot in the browser: joint sliders, known poses and their measurements")
+    vw.add_argument("path", help="spec, URDF or Xacro")
+    vw.add_argument("--port", type=types.port, default=8080, help="TCP port (default 8080; 0: any free port)")
+    vw.add_argument(
+        "--host", type=types.host, default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)"
+    )
+    vw.add_argument("--package-path", action="append", type=types.folder, help="folder holding packages (repeatable)")
+    vw.set_defaults(fn=_cmd_view)
+
+    k = sub.add_parser("poses", help="measured known poses against forward kinematics")
+    k.add_argument("spec")
+    k.add_argument("--format", choices=("text", "json"), default="text")
+    k.set_defaults(fn=_cmd_poses)
+
+    s = sub.add_parser("schema", help="print the JSON Schema of the spec")
+    s.set_defaults(fn=_cmd_schema)
+
+    r = sub.add_parser("rules", help="list every finding code (audit rules and the rest), or explain one")
+    r.add_argument("code", nargs="?", type=types.rule_code, help="a code to explain, e.g. UNIT004")
+    r.add_argument("--group", choices=_code_groups(), help="list only the codes of one group")
+    r.set_defaults(fn=_cmd_rules)
+    return p
+
+
+def main(argv: Sequence[str] | None = None, ending: bool = False) -> int:
+    """Run one command; its exit code. ``ending``: the process ends after it (see :func:`entry`)."""
+    _one_blas_thread()
+    _fewer_collections()
+    from descgen.infra.pydantic_plugins import no_plugin_lookup
+
+    with no_plugin_lookup():
+        return _run(argv, ending)
+
+
+def entry() -> NoReturn:
+    """The console script and ``python -m descgen``: :func:`main` in a process that ends with it,
+    so the objects the command made are left to the exit (descgen/infra/collector.py), not collected."""
+    raise SystemExit(main(ending=True))
+
+
+def _run(argv: Sequence[str] | None, ending: bool = False) -> int:
+    try:
+        args = parser().parse_args(argv)
+    except SystemExit as exc:  # argparse: --help, --version, or a bad option value (exit 2)
+        return exc.code if isinstance(exc.code, int) else EXIT_INPUT if exc.code else EXIT_OK
+    try:
+        # validate, generate and check: every object lives to the end (descgen/infra/collector.py), and
+        # their input is bounded (a spec is at most 16 MiB); tf-audit and control keep the collector
+        with collector.paused(args.fn in (_cmd_validate, _cmd_generate, _cmd_check), ending):
+            code = int(args.fn(args))
+        sys.stdout.flush()  # a closed pipe shows here, inside the handler, not at exit
+        return code
+    except InputError as exc:
+        sys.stderr.write(report.text(exc.findings))
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        return _reader_went_away()
+
+
+def _one_blas_thread() -> None:
+    """numpy's OpenBLAS starts a thread per core when numpy is imported, ~60 ms of CPU in every
+    process that imports numpy; descgen multiplies 4x4 matrices and small vertex arrays, where
+    BLAS threads gain nothing. Only before numpy is loaded (a fresh process), and a user's own
+    setting wins."""
+    import os
+
+    if "numpy" not in sys.modules:
+        os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
+def _fewer_collections() -> None:
+    """Python's cyclic collector runs after every 700 new container objects; a 1000-link robot
+    makes millions (YAML nodes, DOM nodes, model records), nearly all alive, and collecting
+    took a third of ``generate`` (3.2 s -> 2.3 s with it off, the same peak memory). Every
+    10,000 still collects, so garbage cycles stay bounded. Only over Python's default."""
+    import gc
+
+    gen0, gen1, gen2 = gc.get_threshold()
+    if gen0 == 700:
+        gc.set_threshold(10_000, gen1, gen2)
+
+
+def _settled_import(module: str) -> None:
+    """Import a command's modules with the cyclic collector paused, then freeze what they made.
+    Importing pydantic, numpy, jinja2 and the spec models creates hundreds of thousands of
+    objects that live as long as the process; collecting while they are made, and traversing
+    them in every later collection, was ~35 ms of a cold ``check`` (8 ms after). Only on the
+    first import (a process that imports again, like the test suite, freezes nothing more), and
+    the collector is left as it was found."""
+    import gc
+    import importlib
+
+    if module in sys.modules:
+        return
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        importlib.import_module(module)
+    finally:
+        gc.freeze()  # long-lived objects out of every later collection's traversal
+        if was:
+            gc.enable()
+
+
+def _reader_went_away() -> int:
+    """The reader of our output closed it (``descgen rules | head``): stop quietly. Python
+    flushes stdout again at exit; pointing it at devnull keeps that flush from raising a
+    second BrokenPipeError (https://docs.python.org/3/library/signal.html#note-on-sigpipe)."""
+    import os
+
+    # not a real file (captured in tests): then nothing is flushed to a pipe at exit
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    return 141  # 128 + SIGPIPE, what a shell reports for a writer killed by the closed pipe
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,508 @@
+"""``descgen report``: one page, ``evidence/README.md``, that links and summarises every proof.
+
+The page is a pure function of the spec, the package on disk and the committed control
+evidence, so ``descgen check`` rebuilds it in memory and compares it like a generated file.
+What may differ between machines without the robot changing (MuJoCo's drift digits and wall
+time, whether MuJoCo is installed) sits between ``<!-- volatile -->`` markers and is left out
+of that comparison.
+
+Building the page runs the tf scenario, the fault catalogue and validation again (about a
+second), so its last line records the hash of everything it was built from and of its own
+comparable text (descgen/infra/evidence_hash.py). ``check`` takes a page whose record matches as
+current without building it; any other page is built and compared as before. The record
+line itself is not compared: a page that reads the same is not stale because descgen's code
+changed, it is only built again until ``descgen report`` records the new inputs.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import tempfile
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from descgen.commands import text as cli_format
+from descgen.core.findings import Finding, InputError, Where
+from descgen.core.record import record
+from descgen.infra import evidence_hash
+from descgen.output import report
+from descgen.write import pose_images
+
+PAGE = "evidence/README.md"
+_VOLATILE = re.compile(r"<!-- volatile -->.*?<!-- /volatile -->", re.S)
+_RECORD = re.compile(r"^<!-- descgen input-sha256=[0-9a-f]{64} content-sha256=[0-9a-f]{64} -->\n?", re.M)
+# what the page reads from the package besides the files it is given: verdict.json, which files
+# exist (links), the plot names; the page itself, its pictures and the machine's frames.svg aside
+_NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg")
+# the libraries whose behaviour the page prints: xacro and lxml (proofs), pint and pydantic
+# (validation), rosbags (the tf scenario's recording), numpy, PyYAML, Jinja2 (rendering), trimesh
+_TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Jinja2", "trimesh")
+TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
+
+
+@record
+class FieldFault:
+    """A field-story mistake planted in a copy of the spec text, and the code that must catch it."""
+
+    name: str
+    story: str
+    expected: str
+    plant: Callable[[str], str]
+
+
+def _camera_metres(text: str) -> str:
+    """The wrist camera 25 m away: its 25 mm offset typed as metres."""
+    return _replace_in(text, "name: camera", "xyz: [25 mm,", "xyz: [25 m,")
+
+
+def _elbow_axis(text: str) -> str:
+    """The elbow turning about z instead of y."""
+    return _replace_in(text, "name: elbow_joint", "axis: +y", "axis: +z")
+
+
+def _display_desired(text: str) -> str:
+    """An operator display relay publishing the commanded positions on /joint_states."""
+    extra = "  joint_state_sources:\n    - {node: operator_display_relay, kind: desired, source: field story}\n"
+    if re.search(r"^frames:\s*$", text, re.M):
+        return re.sub(r"^frames:\s*\n", lambda m: m.group(0) + extra, text, count=1, flags=re.M)
+    return text.rstrip("\n") + "\n\nframes:\n" + extra
+
+
+def _replace_in(text: str, anchor: str, old: str, new: str) -> str:
+    """``old`` -> ``new`` at its first occurrence after ``anchor`` (unchanged text: not plantable)."""
+    start = text.find(anchor)
+    at = text.find(old, start) if start >= 0 else -1
+    return text if at < 0 else text[:at] + new + text[at + len(old) :]
+
+
+FIELD_FAULTS = (
+    FieldFault(
+        "camera-25m", "the wrist camera 25 m away (a millimetre value typed as metres)", "UNIT004", _camera_metres
+    ),
+    FieldFault("elbow-axis", "the elbow turning about the wrong axis (+z for +y)", "POSE010", _elbow_axis),
+    FieldFault(
+        "display-desired",
+        "an operator display fed by desired commands instead of measured state",
+        "FRAME005",
+        _display_desired,
+    ),
+)
+
+
+@record
+class Caught:
+    fault: FieldFault
+    planted: bool
+    by: Finding | None
+
+
+def field_faults(spec_text: str, shown: str) -> list[Caught]:
+    """Plant each field-story fault in a copy of the spec text and validate it as ``validate``
+    and ``poses`` would; the fault is caught by the first error of its expected code."""
+    from descgen.audit.spec import load_spec_text
+    from descgen.physics.poses import findings as pose_findings
+
+    out = []
+    for fault in FIELD_FAULTS:
+        text = fault.plant(spec_text)
+        if text == spec_text:
+            out.append(Caught(fault, False, None))
+            continue
+        try:
+            loaded = load_spec_text(text, shown)
+            found = [*loaded.findings, *pose_findings(loaded.robot)]
+        except InputError as exc:
+            found = list(exc.findings)
+        by = next((f for f in found if f.code == fault.expected and f.severity == "error"), None)
+        out.append(Caught(fault, True, by))
+    return out
+
+
+# Everything the page quotes from its input (the spec's file name, names, messages, what the
+# recorded control run says) is Markdown text, a code span or a fenced block that it cannot leave
+# (descgen/render/formatting.py: mdtext, mdspan, mdfence, mddest); tests/test_markdown_escaping.py
+# reads the page with a CommonMark parser. Imported when the page is built (descgen.render is
+# not needed to take a recorded page as current).
+
+
+def _md() -> Any:
+    from descgen.render import formatting
+
+    return formatting
+
+
+def _block(text: str, lang: str = "") -> list[str]:
+    return _md().mdfence(text, lang)  # type: ignore[no-any-return]
+
+
+def _exists(package: Path, rel: str) -> bool:
+    return (package / rel).is_file()
+
+
+def _link(package: Path, rel: str, label: str | None = None) -> str:
+    """A link relative to evidence/README.md; a missing file is said so, never linked blindly."""
+    target = rel[len("evidence/") :] if rel.startswith("evidence/") else f"../{rel}"
+    shown = _md().mdtext(label or rel)
+    return f"[{shown}]({_md().mddest(target)})" if _exists(package, rel) else f"{shown} (missing)"
+
+
+def _verdict(ok: bool, text: str) -> str:
+    return f"**Verdict: {'PASS' if ok else 'FAIL'}**: {text}"
+
+
+# -- the sections ---------------------------------------------------------------------------
+
+
+Proofs = Sequence[tuple[str, Sequence[Finding]]]
+
+
+def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
+    from descgen.prove import CHECKS
+
+    # the results plan() already has (the same checks on the same files), else run them here
+    done = dict(proofs) if proofs is not None else {name: check(files, robot, package) for name, check in CHECKS}
+
+    urdf = next((rel for rel in files if rel.startswith("urdf/") and rel.endswith(".urdf")), "")
+    xacro = next((rel for rel in files if rel.endswith(".urdf.xacro")), "")
+    moving = [j for j in robot.joints if j.type != "fixed"]
+    lines = [
+        "## 1. Expanded model",
+        "",
+        f"{_link(package, urdf)} (expanded from {_link(package, xacro)}): {len(robot.links)} links, "
+        f"{len(robot.joints)} joints ({len(moving)} moving).",
+        "",
+        "| proof | result |",
+        "|---|---|",
+    ]
+    ok = True
+    for name, _ in CHECKS:
+        found = done[name]
+        bad = sorted({f.code for f in found if f.severity in ("error", "warning")})
+        notes = sorted({f.code for f in found if f.severity == "info"})
+        ok = ok and not bad
+        result = "failed: " + ", ".join(bad) if bad else "passed" + (f" (notes: {', '.join(notes)})" if notes else "")
+        lines.append(f"| {name} | {result} |")
+    lines += ["", _verdict(ok, "every round trip (xacro, yourdfpy, check_urdf, SRDF, ros2_control) agrees"), ""]
+    return lines
+
+
+def _validation(spec: Path, shown: str) -> tuple[list[str], Any]:
+    from descgen.audit.spec import load_spec
+
+    loaded = load_spec(spec, display=shown)
+    text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
+    ok = not any(f.severity == "error" for f in loaded.findings)
+    lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
+    lines += [_verdict(ok, "the spec is valid"), ""]
+    return lines, loaded.robot
+
+
+def _poses(robot: Any, package: Path) -> list[str]:
+    from descgen.physics.poses import evaluate, findings
+
+    rows = evaluate(robot)
+    bad = [f for f in findings(robot, rows) if f.severity == "error"]
+    lines = ["## 3. Known poses", "", f"Table: {_link(package, 'evidence/known_poses.md')}.", ""]
+    lines += _block(cli_format.poses_table(rows), "text")
+    # one picture per pose (model dots, measured crosses); check compares their inputs, not PNG bytes
+    lines += [*pose_images.embeds(robot), ""] if robot.known_poses else []
+    lines += [_verdict(not bad, f"{len(rows)} measured frame positions within tolerance of forward kinematics"), ""]
+    return lines
+
+
+def _frames(package: Path, files: dict[str, str]) -> list[str]:
+    md = files.get("evidence/frames.md", "")
+    m = re.search(r"```mermaid\n.*?```\n", md, re.S)
+    lines = ["## 4. Frame ownership", "", f"Every edge and its publisher: {_link(package, 'evidence/frames.md')}.", ""]
+    if m:
+        lines += [m.group(0).rstrip("\n"), ""]
+    lines += [_verdict(m is not None, "one owner per frame (FRAME rules pass in validation)"), ""]
+    return lines
+
+
+def _timestamps(robot: Any) -> list[str]:
+    from descgen.commands.tf.bagaudit import audit
+    from descgen.commands.tf.scenario import FAULTS, WINDOWS, write
+
+    with tempfile.TemporaryDirectory(prefix="descgen-report-") as tmp:
+        bag = Path(tmp) / "scenario"
+        write(robot, bag, FAULTS, 10.0, "mcap")
+        rep = audit(bag, TARGET_FRAME, (), 0, None)
+        text = cli_format.tf_audit_text(rep, TARGET_FRAME)
+    c = rep.counts
+    failed = {k for k in ("disconnected", "stale", "future") if c[k]}
+    planted = ", ".join(f"{_md().mdspan(f)} in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items())
+    lines = [
+        "## 5. Timestamp failures",
+        "",
+        f"`descgen tf-scenario SPEC --out BAG --fault camera-future --fault odom-gap --fault unknown-frame` "
+        f"(10 s; planted: {planted}), then `descgen tf-audit BAG --target {TARGET_FRAME}` "
+        "(the recording is not committed; this is its audit):",
+        "",
+        *_block(text, "text"),
+        _verdict(
+            failed == {"disconnected", "stale", "future"},
+            "each planted fault shows as its own failure class (disconnected, stale, future-dated)",
+        ),
+        "",
+    ]
+    return lines
+
+
+def _control(package: Path) -> tuple[list[str], list[str]]:
+    ev = package / "evidence"
+    try:
+        verdict = json.loads((ev / "verdict.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        verdict = {}
+    traces = [
+        "## 6. Interface and lifecycle traces",
+        "",
+        f"{_link(package, 'evidence/lifecycle.md')} (and {_link(package, 'evidence/lifecycle.jsonl')}), "
+        f"{_link(package, 'evidence/interfaces.md')}.",
+        "",
+    ]
+    active = not verdict.get("controllers_not_active", ["?"])
+    traces += [_verdict(bool(verdict) and active, "every controller reached active; no claim was refused"), ""]
+    plots = sorted(p.name for p in ev.glob("*.png")) if ev.is_dir() else []
+    run = verdict.get("run", {})
+    trajectory = run.get("trajectory", "?")
+    dvm = [
+        "## 7. Desired versus measured",
+        "",
+        f"{_link(package, 'evidence/desired_vs_measured.csv')} and {_link(package, 'evidence/verdict.json')}, "
+        f"from {_md().mdspan(f'descgen control SPEC --trajectory {trajectory}')} "
+        f"(plant {_md().mdtext(run.get('plant', {}).get('kind', '?'))}).",
+        "",
+    ]
+    dvm += [f"![{_md().mdtext(p)}]({_md().mddest(p)})" for p in plots] + [""]
+    echo = verdict.get("state_echoes_command")
+    dvm += [
+        _verdict(
+            bool(verdict.get("ok")),
+            f"tracking within tolerance; {_md().mdspan(f'state_echoes_command: {str(echo).lower()}')}",
+        ),
+        "",
+    ]
+    if echo:
+        dvm += [f"> {_md().mdtext(verdict.get('note', ''))}", ""]
+    return traces, dvm
+
+
+def _transcript(
+    spec: Path, shown: str, check_out: tuple[str, str], unchanged: int, simulate: bool, robot: Any
+) -> list[str]:
+    from descgen.audit.spec import load_spec
+
+    # what `descgen validate SPEC` prints (cli._cmd_validate): the findings on stderr, then the
+    # one-line verdict; tests/test_evidence_page.py holds it to the command's real output
+    loaded = load_spec(spec)
+    validated = report.text(loaded.findings) + cli_format.validated(str(spec), loaded.robot) + "\n"
+    steps = [
+        (f"descgen validate {shown}", validated.replace(str(spec), shown)),
+        (f"descgen generate {shown}", f"{shown}: wrote 0 files, {unchanged} unchanged\n"),
+        (f"descgen check {shown}", check_out[1] + check_out[0]),
+    ]
+    lines = [
+        "## 8. Starter output",
+        "",
+        "What `make demo` prints on a fresh clone after installing (the package is committed and up to date, "
+        "so generate rewrites nothing):",
+        "",
+    ]
+    shell: list[str] = []
+    for cmd, out in steps:
+        shell += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
+    # MuJoCo's digits and its presence vary by machine: check leaves this part out (and skips the run)
+    shell += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
+    images = [*(pose_images.image_rel(kp.name) for kp in robot.known_poses), pose_images.SIDECAR]
+    wrote = [f"wrote {rel}" for rel in images]
+    shell += [f"$ descgen report {shown}", *wrote, f"wrote {PAGE}"]
+    lines += _block("\n".join(shell), "text")
+    lines += [_verdict("every check passed" in check_out[0], "validate, generate and check succeed"), ""]
+    return lines
+
+
+def _simulate(spec: Path, shown: str) -> list[str]:
+    from descgen.commands.simulate import Settings, simulate_description
+
+    lines = [f"$ descgen simulate {shown} --pose ready"]
+    try:
+        from descgen.read.description import Options
+
+        outcome = simulate_description(spec, Options(None, None, {}, (), False), Settings(pose="ready"))
+    except InputError as exc:
+        return lines + report.text(exc.findings).replace(str(spec), shown).splitlines()
+    text = cli_format.simulate_text(shown, outcome.report)
+    text = re.sub(r" in [0-9.]+ s wall", "", text)
+    return lines + text.splitlines()
+
+
+def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
+    from descgen.commands.faults import plant_all
+
+    caught = field_faults(spec.read_text(encoding="utf-8"), shown)
+    lines = [
+        "## 9. Three-fault audit",
+        "",
+        "The field story's three faults, each planted in a copy of the spec and validated:",
+        "",
+        "| fault | planted | caught by |",
+        "|---|---|---|",
+    ]
+    for c in caught:
+        by = _md().mdtext(f"{c.by.code}: {report.printable(c.by.message)}") if c.by else "**MISSED**"
+        lines.append(f"| {c.fault.story} | {'yes' if c.planted else 'not plantable'} | {by} |")
+    results = plant_all(robot)
+    applicable = [r for r in results if r.applicable]
+    lines += ["", "`descgen faults SPEC`, the whole catalogue:", "", *_block(cli_format.faults_text(results), "text")]
+    all_caught = all(c.by is not None for c in caught) and all(r.caught for r in applicable)
+    lines += [_verdict(all_caught, "every planted fault was caught by its expected finding"), ""]
+    return lines
+
+
+# -- the page -------------------------------------------------------------------------------
+
+
+def build(
+    spec: Path,
+    shown: str,
+    files: dict[str, str],
+    robot: Any,
+    package: Path,
+    check_out: tuple[str, str],
+    n: int,
+    simulate: bool = True,
+    proofs: Proofs | None = None,
+    key: str | None = None,
+) -> str:
+    """The whole page. ``check_out`` is (stdout, stderr) of ``descgen check`` for the transcript,
+    ``n`` the number of files generate writes, ``proofs`` the results of checks.CHECKS by name
+    when the caller has them, ``key`` the :func:`input_key` to record on the last line."""
+    validation, _ = _validation(spec, shown)
+    traces, dvm = _control(package)
+    parts = [
+        f"# Evidence for {_md().mdtext(robot.name)}",
+        "",
+        f"Written by {_md().mdspan(f'descgen report {shown}')}; `descgen check` verifies it is current. "
+        "Each section links the committed files it summarises and ends with a verdict.",
+        "",
+        *_model(files, robot, package, proofs),
+        *validation,
+        *_poses(robot, package),
+        *_frames(package, files),
+        *_timestamps(robot),
+        *traces,
+        *dvm,
+        *_transcript(spec, shown, check_out, n, simulate, robot),
+        *_field_story(spec, shown, robot),
+    ]
+    page = _relative("\n".join(parts).rstrip("\n") + "\n", package)
+    return page if key is None else page + f"<!-- {evidence_hash.stamp(key, comparable(page))} -->\n"
+
+
+def input_key(
+    spec: Path,
+    shown: str,
+    files: dict[str, str],
+    meshes: dict[str, bytes],
+    package: Path,
+    check_out: tuple[str, str],
+    n: int,
+) -> str:
+    """The hash of everything the page's comparable text is a function of: the spec's bytes,
+    the rendered files and meshes, what the page reads from the package, what check printed
+    (paths as the project sees them), descgen's code and the libraries it prints the work of."""
+    import shutil
+
+    check_urdf = shutil.which("check_urdf")
+    urdfdom = None
+    if check_urdf is not None:  # its identity as frames_svg names dot's: no process started
+        st = Path(check_urdf).resolve().stat()
+        urdfdom = [str(Path(check_urdf).resolve()), st.st_size, st.st_mtime_ns]
+    return evidence_hash.digest(
+        {
+            "what": PAGE,
+            **evidence_hash.descgen_identity(),
+            "tools": evidence_hash.versions(*_TOOLS),
+            "check_urdf": urdfdom,
+            "spec": evidence_hash.sha256(spec.read_bytes()),
+            "shown": shown,
+            "files": {rel: evidence_hash.sha256(text) for rel, text in files.items()},
+            "meshes": {rel: evidence_hash.sha256(data) for rel, data in meshes.items()},
+            "package": evidence_hash.package_files(package, _NOT_READ),
+            "check_out": [_relative(text, package) for text in check_out],
+            "n": n,
+        }
+    )
+
+
+def current(package: Path, key: str) -> bool:
+    """True when the committed page records ``key`` and its text is what was recorded with it
+    (check then takes it as current without building it)."""
+    target = package / PAGE
+    if target.is_symlink() or not target.is_file():
+        return False
+    now = target.read_text(encoding="utf-8", errors="replace")
+    found = list(_RECORD.finditer(now))
+    if len(found) != 1:
+        return False
+    body = now[: found[0].start()] + now[found[0].end() :]
+    return evidence_hash.reusable(evidence_hash.recorded(found[0].group(0)), key, comparable(body))
+
+
+def _relative(page: str, package: Path) -> str:
+    """Paths as the project sees them (``specs/...``, ``generated/...``): findings name files by
+    the path they were read from, and the page must read the same on any machine."""
+    for folder in {package.resolve().parent.parent, package.parent.parent}:
+        page = page.replace(f"{folder}/", "")
+    return page
+
+
+def comparable(page: str) -> str:
+    """The page without its volatile parts and its input record (what check compares)."""
+    return _VOLATILE.sub("<!-- volatile -->", _RECORD.sub("", page))
+
+
+def stale(package: Path, fresh: str) -> list[Finding]:
+    """GEN080 when the committed page is missing or differs from ``fresh`` (volatile parts aside)."""
+    target = package / PAGE
+    where = Where(str(target))
+    if not target.is_file():
+        return []  # no report written yet: nothing to keep current (generate does not write it)
+    now = target.read_text(encoding="utf-8", errors="replace")
+    if comparable(now) == comparable(fresh):
+        return []
+    return [
+        Finding(
+            "GEN080",
+            "error",
+            f"{PAGE} is stale: the proofs it summarises changed",
+            "run descgen report SPEC and commit the result",
+            f"file:{PAGE}",
+            where,
+        )
+    ]
+
+
+def failed_verdicts(page: str) -> list[str]:
+    return [line for line in page.splitlines() if line.startswith("**Verdict: FAIL**")]
+
+
+def write(package: Path, page: str) -> Path:
+    """The page, replaced in one rename so a reader never sees half of it."""
+    target = package / PAGE
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_name(f".{target.name}.tmp")
+    tmp.write_text(page, encoding="utf-8")
+    tmp.replace(target)
+    return target
+
+
+def check_lines(spec_shown: str, findings: Sequence[Finding], diff: str) -> tuple[str, str]:
+    """(stdout, stderr) that ``descgen check`` prints for this outcome, as in cli._cmd_check."""
+    failed = any(f.severity == "error" for f in findings)
+    out = diff + ("" if failed else f"{spec_shown}: generated files are up to date and every check passed\n")
+    return out, report.text(findings)

@@ -1,0 +1,633 @@
+"""``<ros2_control>`` blocks and a controller_manager YAML -> the spec's ``ros2_control:``.
+
+A block goes into the spec only when every part of it has a spec field (hardware plugin and
+params, joints with command/state interfaces and their min/max/initial_value, sensors, gpios,
+the ``mimic`` attribute); otherwise all blocks stay verbatim in pass-through (IMP021 says why),
+so nothing is lost and one block is never written twice.
+
+generate adds what the description leaves to ros2_control's defaults: command ``min``/``max``
+from the URDF joint limits (Jazzy only tightens limits with them, so equal values change
+nothing: reference/ros2_control.md section 3) and a state ``initial_value`` (0, GenericSystem's
+default for a NaN joint state). Those additions are listed (IMP022) and the round trip allows
+exactly them, nothing else (:func:`block_differences`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+from lxml import etree
+
+from descgen.commands.importer.spec import SpecWriter, number
+from descgen.core import model as m
+from descgen.core.findings import Finding, InputError, Where
+from descgen.core.xmlcompare import line_of
+from descgen.infra.safeio import read_bounded
+from descgen.physics import derive
+from descgen.read.controllers import load_substituted
+from descgen.spec.convert import EFFORT, POSITION, VELOCITY
+from descgen.spec.models import CALIBRATABLE, INTERFACE_PATTERN, NAME_PATTERN
+
+Data = dict[str, Any]
+Locate = Callable[[etree._Element], Where | None]
+
+_NAME = re.compile(NAME_PATTERN)
+_IFACE = re.compile(INTERFACE_PATTERN)
+_PLUGIN = re.compile(r"^[A-Za-z0-9_/:]+$")
+_CONTROLLER_TYPE = re.compile(r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+$")
+_ONE_LINE = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]")
+_JOINT_IFACES = ("position", "velocity", "acceleration", "effort")
+_PARAM_IFACES = ("position", "velocity", "effort")  # the spec knows their units per joint type
+_DATA_TYPES = ("double", "bool", "float32", "uint8", "int8", "uint16", "int16", "uint32", "int32")
+DEFAULT_UPDATE_RATE = 100  # Hz, controller_manager's default (reference/ros2_control.md section 4)
+
+
+def _finding(code: str, severity: str, message: str, hint: str, subject: str, where: Where) -> Finding:
+    return Finding(code, severity, message, hint, subject, where)  # type: ignore[arg-type]
+
+
+def _elements(e: etree._Element) -> list[etree._Element]:
+    return [c for c in e if isinstance(c.tag, str)]
+
+
+def _number(text: str | None) -> float | None:
+    try:
+        v = float((text or "").strip())
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
+# -- what the spec can express ------------------------------------------------------------------
+
+
+def _iface_problem(e: etree._Element, owner: str, names: tuple[str, ...] | None, params: tuple[str, ...]) -> str | None:
+    name = e.get("name", "")
+    if set(e.attrib) - {"name", "data_type"}:
+        return f"{owner} interface '{name}' has attributes {sorted(set(e.attrib) - {'name', 'data_type'})}"
+    if (names is not None and name not in names) or (names is None and not _IFACE.match(name)):
+        return f"{owner} has interface '{name}', which the spec does not name"
+    if e.get("data_type") is not None and e.get("data_type") not in _DATA_TYPES:
+        return f"{owner} interface '{name}' has data_type '{e.get('data_type')}'"
+    seen = set()
+    for p in _elements(e):
+        key = p.get("name", "")
+        if p.tag != "param" or set(p.attrib) != {"name"} or _elements(p) or key not in params or key in seen:
+            return f"{owner} interface '{name}' holds <{p.tag} name='{key}'>, which the spec has no field for"
+        seen.add(key)
+        if _number(p.text) is None:
+            return f"{owner} interface '{name}' param {key} is '{(p.text or '').strip()}', not a finite number"
+    return None
+
+
+def _params_problem(e: etree._Element, owner: str) -> str | None:
+    seen = set()
+    for p in e.findall("param"):
+        key = p.get("name", "")
+        text = (p.text or "").strip()
+        if set(p.attrib) != {"name"} or _elements(p) or not _NAME.match(key) or key in seen or _ONE_LINE.search(text):
+            return f"{owner} param '{key}' is not a plain name=value parameter the spec can hold"
+        seen.add(key)
+    return None
+
+
+def _joint_problem(je: etree._Element, robot: m.Robot) -> str | None:
+    name = je.get("name", "")
+    owner = f"joint '{name}'"
+    if set(je.attrib) - {"name", "mimic"}:
+        return f"{owner} has attributes {sorted(set(je.attrib) - {'name', 'mimic'})}"
+    if je.get("mimic") is not None and je.get("mimic", "").lower() not in ("true", "false"):
+        return f"{owner} has mimic='{je.get('mimic')}' (ros2_control reads only true/false)"
+    for c in _elements(je):
+        if c.tag == "command_interface":
+            allowed: tuple[str, ...] = ("min", "max")
+        elif c.tag == "state_interface":
+            allowed = ("initial_value",)
+        else:
+            return f"{owner} holds <{c.tag}>, which the spec has no field for"
+        names = _PARAM_IFACES if _elements(c) else _JOINT_IFACES
+        problem = _iface_problem(c, owner, names, allowed)
+        if problem:
+            return problem
+    return None
+
+
+def problem(block: etree._Element, robot: m.Robot) -> str | None:
+    """Why ``block`` cannot be written in the spec's ``ros2_control:`` (None: it can)."""
+    name = block.get("name", "")
+    if set(block.attrib) - {"name", "type"}:
+        return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type'})}"
+    if not _NAME.match(name):
+        return f"the block name '{name}' is not a plain identifier"
+    if block.get("type", "system") not in ("system", "actuator", "sensor"):
+        return f"the block type is '{block.get('type')}'"
+    hw = block.findall("hardware")
+    if len(hw) != 1:
+        return f"the block has {len(hw)} <hardware> elements"
+    plugins = hw[0].findall("plugin")
+    if len(plugins) != 1 or not _PLUGIN.match((plugins[0].text or "").strip()):
+        return "the hardware plugin is missing, repeated or not a plugin name"
+    if any(c.tag not in ("plugin", "param") for c in _elements(hw[0])):
+        return "the hardware holds elements other than <plugin> and <param>"
+    if (p := _params_problem(hw[0], "hardware")) is not None:
+        return p
+    for c in _elements(block):
+        cname = c.get("name", "")
+        if c.tag == "hardware":
+            continue
+        if c.tag == "joint":
+            p = _joint_problem(c, robot)
+        elif c.tag in ("sensor", "gpio"):
+            kinds = ("state_interface", "param") if c.tag == "sensor" else ("command_interface", "state_interface")
+            if set(c.attrib) != {"name"} or not _NAME.match(cname):
+                p = f"{c.tag} '{cname}' has a name or attributes the spec cannot hold"
+            elif any(x.tag not in kinds for x in _elements(c)):
+                p = f"{c.tag} '{cname}' holds elements other than {', '.join(kinds)}"
+            else:
+                p = _params_problem(c, f"{c.tag} '{cname}'") or next(
+                    (
+                        q
+                        for x in _elements(c)
+                        if x.tag != "param"
+                        and (q := _iface_problem(x, f"{c.tag} '{cname}'", None, ("min", "max", "initial_value")))
+                    ),
+                    None,
+                )
+        else:
+            p = f"the block holds <{c.tag}>, which the spec has no field for"
+        if p is not None:
+            return p
+    return None
+
+
+# -- spec data -----------------------------------------------------------------------------------
+
+
+def _params(e: etree._Element) -> dict[str, str]:
+    return {p.get("name", ""): (p.text or "").strip() for p in e.findall("param")}
+
+
+def _joint_kind(robot: m.Robot, joint: str, iface: str) -> str:
+    j = robot.joint(joint)
+    jt = j.type if j is not None else "revolute"
+    table = {"position": POSITION, "velocity": VELOCITY, "effort": EFFORT}[iface]
+    default = {"position": "angle", "velocity": "angular_velocity", "effort": "torque"}[iface]
+    return table.get(jt, (default, ""))[0]
+
+
+def _joint_iface(w: SpecWriter, robot: m.Robot, joint: str, e: etree._Element) -> str | Data:
+    """A joint's interface: its min/max/initial_value as quantities of the joint's kind."""
+    kind = _joint_kind(robot, joint, e.get("name", "")) if _params(e) else ""
+    return _iface(e, lambda v: w.q(v, kind), ("min", "max", "initial_value"))
+
+
+def _interfaces(
+    e: etree._Element,
+    read: Callable[[etree._Element], str | Data],
+    kinds: tuple[str, ...] = ("command", "state"),
+) -> Data:
+    """``command:``/``state:`` lists of an element's interfaces, each kind only when it has one."""
+    out: Data = {}
+    for kind in kinds:
+        if found := [read(c) for c in e.findall(f"{kind}_interface")]:
+            out[kind] = found
+    return out
+
+
+def _iface(
+    e: etree._Element,
+    value: Callable[[float], object] = number,
+    keys: tuple[str, ...] = ("initial_value", "min", "max"),
+) -> str | Data:
+    """An interface as the spec writes it: the bare name, or name, data_type and ``keys``
+    (each through ``value``) for one that has parameters or a data type."""
+    params = _params(e)
+    if not params and e.get("data_type") is None:
+        return e.get("name", "")
+    out: Data = {"name": e.get("name", "")}
+    if e.get("data_type") is not None:
+        out["data_type"] = e.get("data_type")
+    for key in keys:
+        if key in params:
+            out[key] = value(float(params[key]))
+    return out
+
+
+def block_data(block: etree._Element, robot: m.Robot, w: SpecWriter, source: Callable[[etree._Element], str]) -> Data:
+    """One block as the spec writes it (name, type, hardware, joints, sensors, gpios)."""
+    hw = block.find("hardware")
+    assert hw is not None  # problem() said so
+    hardware: Data = {"plugin": (hw.findtext("plugin") or "").strip()}
+    if params := _params(hw):
+        hardware["params"] = params
+    out: Data = {"name": block.get("name", ""), "type": block.get("type", "system"), "hardware": hardware}
+    joints = []
+    for je in block.findall("joint"):
+        name = je.get("name", "")
+        j: Data = {"name": name, **_interfaces(je, functools.partial(_joint_iface, w, robot, name))}
+        if je.get("mimic") is not None:
+            j["mimic"] = je.get("mimic", "").lower() == "true"
+        j["source"] = source(je)
+        joints.append(j)
+    sensors = []
+    for se in block.findall("sensor"):
+        s: Data = {"name": se.get("name", ""), **_interfaces(se, _iface, kinds=("state",))}
+        if params := _params(se):
+            s["params"] = params
+        s["source"] = source(se)
+        sensors.append(s)
+    gpios = []
+    for ge in block.findall("gpio"):
+        g: Data = {"name": ge.get("name", ""), **_interfaces(ge, _iface)}
+        g["source"] = source(ge)
+        gpios.append(g)
+    for key, items in (("joints", joints), ("sensors", sensors), ("gpios", gpios)):
+        if items:
+            out[key] = items
+    out["source"] = source(block)
+    return out
+
+
+def additions(block: etree._Element, robot: m.Robot) -> list[str]:
+    """The params generate will write that ``block`` leaves to ros2_control's defaults."""
+    out = []
+    for je in block.findall("joint"):
+        j = robot.joint(je.get("name", ""))
+        for c in je.findall("command_interface"):
+            lo, hi = derive.command_limits(j, c.get("name", ""))
+            params = _params(c)
+            out += [
+                f"{je.get('name')}/{c.get('name')} {k}"
+                for k, v in (("min", lo), ("max", hi))
+                if v is not None and k not in params
+            ]
+        for c in je.findall("state_interface"):
+            if "initial_value" not in _params(c):
+                out.append(f"{je.get('name')}/{c.get('name')} initial_value")
+    return out
+
+
+# -- the round trip of the blocks ----------------------------------------------------------------
+
+
+def _ifaces(e: etree._Element, tag: str) -> list[tuple[str, str | None, dict[str, float | str]]]:
+    out = []
+    for i in e.findall(tag):
+        params: dict[str, float | str] = {}
+        for k, v in _params(i).items():
+            f = _number(v)
+            params[k] = v if f is None else f
+        out.append((i.get("name", ""), i.get("data_type"), params))
+    return out
+
+
+def _derived(robot: m.Robot, joint: str, kind: str, iface: str, key: str) -> float | None:
+    """What generate writes for a param the description left out (None: nothing)."""
+    j = robot.joint(joint)
+    if kind == "command_interface":
+        lo, hi = derive.command_limits(j, iface)
+        return {"min": lo, "max": hi}.get(key)
+    if key == "initial_value":
+        return derive.initial_position(j, None) if iface == "position" else 0.0
+    return None
+
+
+def block_differences(original: list[etree._Element], written: list[etree._Element], robot: m.Robot) -> list[str]:
+    """The blocks as ros2_control's parser reads them, original against written: names, types,
+    plugin, params (text), each joint's mimic and interfaces (params as numbers), sensors and
+    gpios. A param only in the written block must be exactly what generate derives for a
+    missing one (:func:`additions`); comments and layout are not data."""
+    out: list[str] = []
+    if [b.get("name") for b in original] != [b.get("name") for b in written]:
+        names = [b.get("name") for b in original], [b.get("name") for b in written]
+        return [f"ros2_control blocks {names[0]}, after the round trip {names[1]}"]
+    for a, b in zip(original, written, strict=True):
+        at = f"ros2_control:{a.get('name')}"
+
+        def eq(what: str, x: object, y: object, at: str = at) -> None:
+            if x != y:
+                out.append(f"{at}/{what}: {x!r} in the description, {y!r} after the round trip")
+
+        eq("type", a.get("type", "system"), b.get("type", "system"))
+        eq("plugin", (a.findtext("hardware/plugin") or "").strip(), (b.findtext("hardware/plugin") or "").strip())
+        ha, hb = a.find("hardware"), b.find("hardware")
+        eq("hardware params", _params(ha) if ha is not None else {}, _params(hb) if hb is not None else {})
+        ja, jb = a.findall("joint"), b.findall("joint")
+        eq("joints", [j.get("name") for j in ja], [j.get("name") for j in jb])
+        for x, y in zip(ja, jb, strict=False):
+            name = x.get("name", "")
+            eq(f"joint:{name}/mimic", (x.get("mimic") or "").lower() or None, y.get("mimic"))
+            for kind in ("command_interface", "state_interface"):
+                mine, back = _ifaces(x, kind), _ifaces(y, kind)
+                if [i[:2] for i in mine] != [i[:2] for i in back]:
+                    eq(f"joint:{name}/{kind}s", [i[:2] for i in mine], [i[:2] for i in back])
+                    continue
+                for (iname, _, pa), (_, _, pb) in zip(mine, back, strict=True):
+                    extra = {k: v for k, v in pb.items() if k not in pa and v == _derived(robot, name, kind, iname, k)}
+                    eq(f"joint:{name}/{kind}:{iname}", pa, {k: v for k, v in pb.items() if k not in extra})
+        for tag, kinds in (("sensor", ("state_interface",)), ("gpio", ("command_interface", "state_interface"))):
+            sa, sb = a.findall(tag), b.findall(tag)
+            eq(f"{tag}s", [s.get("name") for s in sa], [s.get("name") for s in sb])
+            for x, y in zip(sa, sb, strict=False):
+                for kind in kinds:
+                    eq(f"{tag}:{x.get('name')}/{kind}s", _ifaces(x, kind), _ifaces(y, kind))
+                eq(f"{tag}:{x.get('name')}/params", _params(x), _params(y))
+        eq(
+            "elements",
+            sorted(str(c.tag) for c in _elements(a)),
+            sorted(str(c.tag) for c in _elements(b)),
+        )
+    return out
+
+
+# -- the controllers YAML ------------------------------------------------------------------------
+
+
+@dataclass
+class Controllers:
+    data: list[Data] = field(default_factory=list)  # the spec's controllers
+    update_rate: float | None = None  # as the file gives it; None: not given (100 Hz written)
+    names: tuple[str, ...] = ()  # the controllers imported (what the round trip compares)
+    report: list[Finding] = field(default_factory=list)
+    text: str = ""  # the file as read (the round trip loads it again with yaml.safe_load)
+
+
+def _not_imported(what: str, where: Where, subject: str) -> Finding:
+    return _finding(
+        "IMP024",
+        "warning",
+        f"{what} is not imported from the controllers file (the spec has no field for it)",
+        "the generated config/ros2_controllers.yaml lacks it; keep it in a file of your own if the robot needs it",
+        subject,
+        where,
+    )
+
+
+def _substituted(text: str, shown: str, launch_args: Mapping[str, str] | None) -> tuple[Any, list[Finding]]:
+    """The controllers file after its ``$(var NAME)`` launch substitutions (readers/launch_subst.py)
+    and an IMP031 per substitution; InputError (IMP032) when one has no value or is not
+    evaluated: the spec's joint names must be real joints, never the ``$(var ...)`` text."""
+    doc, sites, unresolved = load_substituted(text, shown, launch_args)
+    if unresolved:
+        raise InputError(
+            [
+                Finding(
+                    "IMP032",
+                    "error",
+                    f"cannot import the controllers: {f.message}",
+                    f.hint if f.code == "CTRL052" else "write the value into the file, or import without --controllers",
+                    "controllers",
+                    f.where,
+                )
+                for f in unresolved
+            ]
+        )
+    report = [
+        _finding(
+            "IMP031",
+            "info",
+            f"launch substitution '{site.text}' is imported as {site.value!r}",
+            "the spec holds the substituted names; import again with other --launch-arg values for another launch",
+            "controllers",
+            site.where,
+        )
+        for site in sites
+    ]
+    return doc, report
+
+
+def read_controllers(path: Path, w: SpecWriter, launch_args: Mapping[str, str] | None = None) -> Controllers:
+    """The controller_manager YAML as the spec's controllers: each controller's type (classic
+    ``controller_manager.ros__parameters.<name>.type`` or ``<name>.ros__parameters.type``) and
+    parameters, the update rate; diff_drive's wheel_separation/wheel_radius as ``calibrated``
+    values (the file's, with its line: generate writes them instead of the URDF-derived ones)."""
+    shown = str(path)
+    text = read_bounded(path, "controllers YAML", display=shown).decode("utf-8", "replace")
+    doc, substituted = _substituted(text, shown, launch_args)
+    out = Controllers(text=doc.text, report=substituted)  # the round trip compares the substituted text
+    data = doc.data if isinstance(doc.data, dict) else {}
+
+    def src(p: tuple[str | int, ...]) -> str:
+        wh = doc.where(p, key=True)
+        return f"{Path(wh.file).name}:{wh.line}"
+
+    cm_entry = data.get("controller_manager")
+    cm = cm_entry.get("ros__parameters") if isinstance(cm_entry, dict) else None
+    cm = cm if isinstance(cm, dict) else {}
+    types: dict[str, str] = {}
+    for k, v in cm.items():
+        if k == "update_rate" and isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v):
+            out.update_rate = v
+        elif isinstance(v, dict) and set(v) == {"type"}:
+            types[str(k)] = str(v["type"])
+        else:
+            out.report.append(
+                _not_imported(
+                    f"controller_manager parameter '{k}'",
+                    doc.where(("controller_manager", "ros__parameters", k), True),
+                    "controllers",
+                )
+            )
+    params: dict[str, dict[str, Any]] = {}
+    for k, v in data.items():
+        if k == "controller_manager":
+            if set(v or {}) - {"ros__parameters"}:
+                out.report.append(_not_imported("controller_manager's own keys", doc.where((k,), True), "controllers"))
+            continue
+        rp = v.get("ros__parameters") if isinstance(v, dict) else None
+        if not isinstance(rp, dict) or set(v) != {"ros__parameters"}:
+            out.report.append(_not_imported(f"the entry '{k}'", doc.where((k,), True), f"controller:{k}"))
+            continue
+        params[str(k)] = rp
+        if "type" in rp:
+            types.setdefault(str(k), str(rp["type"]))
+    for name in [n for n in params if n not in types]:
+        out.report.append(
+            _not_imported(f"'{name}' (no controller type names it)", doc.where((name,), True), f"controller:{name}")
+        )
+    names = []
+    for name, type_ in types.items():
+        if not _NAME.match(name) or not _CONTROLLER_TYPE.match(type_):
+            out.report.append(
+                _not_imported(
+                    f"controller '{name}' of type '{type_}' (not a plain name/type)",
+                    doc.where((name,), True),
+                    f"controller:{name}",
+                )
+            )
+            continue
+        c: Data = {"name": name, "type": type_}
+        own = {k: v for k, v in params.get(name, {}).items() if k != "type"}
+        calibrated: Data = {}
+        for key in CALIBRATABLE.get(type_, ()):
+            v = own.get(key)
+            if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) and v > 0:
+                calibrated[key] = {"value": w.q(float(v), "length"), "source": src((name, "ros__parameters", key))}
+                del own[key]
+        if own:
+            c["params"] = own
+        if calibrated:
+            c["calibrated"] = calibrated
+        c["source"] = src((name,) if name in data else ("controller_manager", "ros__parameters", name))
+        out.data.append(c)
+        names.append(name)
+    out.names = tuple(names)
+    return out
+
+
+def _controllers_view(doc: Any, names: tuple[str, ...]) -> dict[str, Any]:
+    """yaml.safe_load data -> {update_rate, name: (type, params)} for the named controllers:
+    the type read where either form puts it, key order not data."""
+    doc = doc if isinstance(doc, dict) else {}
+    cm = (doc.get("controller_manager") or {}).get("ros__parameters") or {}
+    out: dict[str, Any] = {"update_rate": cm.get("update_rate")}
+    for n in names:
+        own = dict((doc.get(n) or {}).get("ros__parameters") or {})
+        type_ = (cm.get(n) or {}).get("type", own.get("type"))
+        own.pop("type", None)
+        out[n] = (type_, own)
+    return out
+
+
+def controllers_differences(
+    original_text: str, written_text: str, imported: Controllers, diff_drive: set[str]
+) -> list[str]:
+    """The imported parts of the original file against the generated one, both read with
+    yaml.safe_load. Normalised: where ``type`` stands, key order, 0.1 = 0.10 (YAML numbers);
+    allowed additions: update_rate 100 when the file has none, and diff_drive's
+    wheel_separation/wheel_radius (derived from the URDF) when the file has none."""
+    a = _controllers_view(yaml.safe_load(original_text), imported.names)
+    b = _controllers_view(yaml.safe_load(written_text), imported.names)
+    out = []
+    rate = a["update_rate"] if a["update_rate"] is not None else DEFAULT_UPDATE_RATE
+    if rate != b["update_rate"]:
+        out.append(
+            f"controllers update_rate: {a['update_rate']!r} in the file, {b['update_rate']!r} after the round trip"
+        )
+    for n in imported.names:
+        (ta, pa), (tb, pb) = a[n], b[n]
+        if n in diff_drive:
+            pb = {k: v for k, v in pb.items() if k in pa or k not in ("wheel_separation", "wheel_radius")}
+        if (ta, pa) != (tb, pb):
+            keys = sorted({*pa, *pb}, key=str)
+            changed = [k for k in keys if pa.get(k, "<absent>") != pb.get(k, "<absent>")] or ["type"]
+            out.append(f"controller:{n}: {', '.join(map(str, changed))} differ after the round trip")
+    return out
+
+
+def locate_source(locate: Locate, shown: str, source_name: Callable[[Where], str]) -> Callable[[etree._Element], str]:
+    return lambda e: source_name(locate(e) or Where(shown, line_of(e)))
+
+
+@dataclass
+class Imported:
+    data: Data | None = None  # the spec's ros2_control section; None: the blocks stay pass-through
+    blocks: tuple[str, ...] = ()  # the imported blocks' XML, for the round trip
+    controllers: Controllers | None = None
+    report: list[Finding] = field(default_factory=list)
+
+
+def import_control(
+    root: etree._Element,
+    robot: m.Robot,
+    w: SpecWriter,
+    source: Callable[[etree._Element], str],
+    where: Callable[[etree._Element], Where],
+    controllers: Path | None,
+    xacro_args: dict[str, str],
+    launch_args: Mapping[str, str] | None = None,
+) -> Imported:
+    """The spec's ros2_control section for ``root``'s blocks and ``controllers`` (or why not)."""
+    blocks = root.findall("ros2_control")
+    if not blocks:
+        return Imported()
+    problems = [(b, p) for b in blocks if (p := problem(b, robot)) is not None]
+    if problems:
+        return Imported(
+            report=[
+                _finding(
+                    "IMP021",
+                    "info",
+                    f"ros2_control block '{b.get('name', '')}' stays in passthrough: {p}",
+                    "generate writes it back unchanged; move it into ros2_control: by hand once the spec can say it",
+                    f"ros2_control:{b.get('name', '')}",
+                    where(b),
+                )
+                for b, p in problems
+            ]
+        )
+    first, *rest = [block_data(b, robot, w, source) for b in blocks]
+    out = Imported(blocks=tuple(etree.tostring(b, encoding="unicode", with_tail=False) for b in blocks))
+    data: Data = {k: v for k, v in first.items() if k != "source"}
+    ctl = read_controllers(controllers, w, launch_args) if controllers is not None else None
+    rate = ctl.update_rate if ctl is not None and ctl.update_rate is not None else None
+    data["update_rate"] = f"{number(float(rate if rate is not None else DEFAULT_UPDATE_RATE))} Hz"
+    if rest:
+        data["blocks"] = rest
+    if ctl is not None and ctl.data:
+        data["controllers"] = ctl.data
+    data["source"] = first["source"]
+    out.data, out.controllers = data, ctl
+    args = ", ".join(f"{k}:={v}" for k, v in sorted(xacro_args.items())) or "no --xacro-arg"
+    for b in blocks:
+        out.report.append(
+            _finding(
+                "IMP020",
+                "info",
+                f"ros2_control block '{b.get('name', '')}' is imported with hardware "
+                f"{(b.findtext('hardware/plugin') or '').strip()}: the variant the description expands to with {args}",
+                "a Xacro that chooses its hardware by an argument has other variants; import with those "
+                "arguments to see them, and add them under hardware.variants by hand",
+                f"ros2_control:{b.get('name', '')}",
+                where(b),
+            )
+        )
+        if added := additions(b, robot):
+            out.report.append(
+                _finding(
+                    "IMP022",
+                    "info",
+                    f"generate writes {len(added)} interface param(s) that block '{b.get('name', '')}' leaves to "
+                    f"ros2_control's defaults: {', '.join(added[:6])}{' ...' if len(added) > 6 else ''}",
+                    "command min/max equal the URDF limits (Jazzy only tightens with them); initial_value is 0 "
+                    "(or the middle of a range without 0); check they suit your hardware",
+                    f"ros2_control:{b.get('name', '')}",
+                    where(b),
+                )
+            )
+    if rate is None:
+        out.report.append(
+            _finding(
+                "IMP023",
+                "info",
+                f"the controller manager's update_rate is not given; the spec says {DEFAULT_UPDATE_RATE} Hz, "
+                "controller_manager's default",
+                "write the rate your hardware runs at in ros2_control.update_rate",
+                "ros2_control",
+                Where(str(controllers)) if controllers is not None else where(blocks[0]),
+            )
+        )
+    if ctl is not None:
+        out.report += ctl.report
+        for c in ctl.data:
+            missing = [k for k in CALIBRATABLE.get(c["type"], ()) if k not in c.get("calibrated", {})]
+            if missing:
+                out.report.append(
+                    _finding(
+                        "IMP025",
+                        "info",
+                        f"controller '{c['name']}': the file gives no {'/'.join(missing)}; generate writes "
+                        "the values derived from the URDF",
+                        "state measured values under calibrated: if the robot has them",
+                        f"controller:{c['name']}",
+                        Where(str(controllers)),
+                    )
+                )
+    return out

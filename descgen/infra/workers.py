@@ -1,0 +1,153 @@
+"""Work spread over processes (``audit --jobs``, ``tf-audit --jobs``), as dependable as the same
+work in one process.
+
+Each item is done by ``fn`` in a worker (forked: it starts with what the parent imported); the
+results come back in the items' order. What can go wrong with processes is handled here, so a
+command never shows it as a traceback or a hang:
+
+- a worker that dies (killed by the system when memory runs out): the items it had not
+  finished are done again in this process, one by one, as ``--jobs 1`` would;
+- workers that cannot be started (too many open files): the same;
+- Ctrl-C, or SIGTERM to this process alone (``Popen.terminate()``, a CI runner's timeout):
+  items not started are dropped, running workers are terminated, and the interruption goes
+  on (exit 130, or 143 for SIGTERM), leaving no worker behind. The signals wait while workers
+  are forked (one handled inside a fork would be lost, or leave a worker unrecorded), and a
+  worker dies on SIGTERM, not through the handler it was forked with;
+- SIGKILL of this process (the OOM killer, ``kill -9``, a CI runner's hard timeout), which runs
+  no clean-up: each worker gets the kernel's parent-death signal (Linux ``PR_SET_PDEATHSIG``,
+  else a thread watching the parent's pid), so none is left running, blocked on its pipe.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import TypeVar
+
+from descgen.infra import interruptions
+from descgen.infra.progress import Step
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+SIGTERM_EXIT = 128 + signal.SIGTERM
+
+
+def map_in_processes(fn: Callable[[T], R], items: Sequence[T], jobs: int, step: Step | None = None) -> list[R]:
+    """``[fn(x) for x in items]``, up to ``jobs`` at once in worker processes (never more than
+    the items or the CPUs: CPU-bound work gains nothing beyond them); ``step(1)`` as each is done."""
+    done = step or (lambda n: None)
+    workers = min(jobs, len(items), _cpus())
+    results: dict[int, R] = {}
+    if workers > 1:
+        _in_workers(fn, items, workers, results, done)
+    for i, item in enumerate(items):  # everything, or what the workers could not finish
+        if i not in results:
+            results[i] = fn(item)
+            done(1)
+    return [results[i] for i in range(len(items))]
+
+
+def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results: dict[int, R], done: Step) -> None:
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
+
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start, initargs=(os.getpid(),))
+    futures = {}
+    try:
+        with _sigterm_raises():
+            try:
+                # the workers are forked, and the pool's threads started, by the submits: a
+                # signal handled in the middle of that would be lost in a fork hook or leave a
+                # worker nobody knows of, so SIGINT and SIGTERM wait until they are started
+                # (the pool's threads keep them blocked; the workers unblock them)
+                with interruptions.held():
+                    for i, item in enumerate(items):
+                        futures[pool.submit(fn, item)] = i
+                for future in as_completed(futures):
+                    results[futures[future]] = future.result()
+                    done(1)
+            except (BrokenProcessPool, OSError):
+                pass  # a worker died or could not start: the caller does the rest in this process
+    except BaseException:  # Ctrl-C, SIGTERM, or fn's own error: drop what has not started
+        for future in futures:
+            future.cancel()
+        for child in multiprocessing.active_children():
+            child.terminate()
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _cpus() -> int:
+    """The CPUs this process may run on (its affinity, where the system tells it)."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+def _worker_start(parent: int) -> None:
+    """In each worker: SIGTERM ends it at once (the parent's terminate()), not through the
+    parent's handler it was forked with, and the signals held while it was forked are let through.
+    And it dies with its parent: a parent killed with SIGKILL (the OOM killer, ``kill -9``, a CI
+    runner's hard timeout) runs no clean-up, and its workers would wait on their pipe forever.
+    Ctrl-C is the parent's to handle (it terminates the workers): a worker ignores SIGINT, so
+    one that reaches a worker still starting (a terminal sends it to the whole group) is dropped
+    instead of raising KeyboardInterrupt inside the pool's initializer, which printed a traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _die_with(parent)
+    interruptions.let_through()
+
+
+PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+
+
+def _die_with(parent: int) -> None:
+    """SIGKILL this process when ``parent`` dies: the kernel's parent-death signal on Linux
+    (prctl through ctypes), else a thread that watches the parent's pid. A parent already gone
+    before that was set up (re-parented: getppid changed) ends the worker here."""
+    armed = False
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            armed = libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0) == 0
+        except (OSError, AttributeError):
+            armed = False
+    if os.getppid() != parent:
+        os._exit(1)
+    if not armed:
+
+        def watch() -> None:
+            while os.getppid() == parent:
+                time.sleep(0.5)
+            os._exit(1)
+
+        threading.Thread(target=watch, name="descgen-parent-watch", daemon=True).start()
+
+
+@contextmanager
+def _sigterm_raises() -> Iterator[None]:
+    """SIGTERM to this process becomes SystemExit(143) while workers run, so they are
+    terminated with it instead of being left waiting on a pipe (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum: int, frame: object) -> None:
+        raise SystemExit(SIGTERM_EXIT)
+
+    before = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, before)

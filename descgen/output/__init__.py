@@ -1,0 +1,1 @@
+"""Findings as users and machines read them: text, JSON, SARIF and JUnit (report.py)."""

@@ -1,0 +1,189 @@
+"""``descgen audit``: read any description (spec, URDF, Xacro; plus SRDF and controllers
+YAML) into the model, resolve its mesh files, and run every rule."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from descgen.core.findings import Finding, InputError, Where
+from descgen.core.model import MeshState, Robot, Ros2Control
+from descgen.infra.safeio import check_file, read_bounded, read_head
+from descgen.meshes import paths as mesh_paths
+
+if TYPE_CHECKING:
+    from descgen.audit import findings_cache
+    from descgen.infra.progress import Step
+
+# The readers (lxml) and the rules are imported where they are used: an audit answered from the
+# findings cache (descgen/audit/findings_cache.py) needs neither.
+
+
+@dataclass(frozen=True)
+class Options:
+    srdf: Path | None = None
+    controllers: Path | None = None
+    xacro_args: Mapping[str, str] = field(default_factory=dict)
+    package_paths: Sequence[Path] = ()
+    trust_xacro: bool = False  # expand with xacro's own evaluator (runs the file's Python)
+    moveit_config: Path | None = None  # a MoveIt config package (MOVEIT rules; descgen/read/moveit_package.py)
+    launch_args: Mapping[str, str] = field(default_factory=dict)  # $(var NAME) in the controllers YAML
+
+
+def kind_of(path: Path) -> str:
+    name = path.name.lower()
+    if name.endswith((".yaml", ".yml")):
+        return "spec"
+    if name.endswith(".xacro"):
+        return "xacro"
+    if name.endswith(".urdf"):
+        return "urdf"
+    head = read_head(path, 4096)  # not read_bytes()[:4096]: that reads all of a 1 GB file (or /dev/zero)
+    return "xacro" if b"xmlns:xacro" in head else "urdf"
+
+
+def mesh_status(robot: Robot, description: Path, package_paths: Sequence[Path]) -> dict[str, MeshState]:
+    """ok | missing | escapes | unresolved, for every mesh filename (descgen/meshes/paths.py)."""
+    return mesh_paths.mesh_status(robot, description, package_paths)[0]
+
+
+def load_description(
+    path: Path, options: Options = Options(), given: Mapping[Path, bytes] | None = None
+) -> tuple[Robot, list[Finding]]:
+    """The model of one description and what its readers reported. InputError when unusable.
+    ``given`` holds bytes already read of the URDF, SRDF or controllers YAML: those are read,
+    not the files again (the findings cache keys an audit by exactly the bytes it audited)."""
+    given = given or {}
+    shown = str(path)
+    check_file(path, "description", display=shown)  # missing, a FIFO, a device, too large: before any read
+    kind = kind_of(path)
+    found: list[Finding] = []
+    if kind == "spec":
+        from descgen.audit.spec import load_spec
+
+        robot = load_spec(path, shown, rules=False, package_paths=options.package_paths).robot
+    else:
+        sources = None  # a Xacro's: where each expanded element was written, so findings point there
+        if kind == "xacro":
+            from descgen.read.xacro_file import expand_located  # not for a plain URDF
+
+            expansion = expand_located(path, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+            data, sources = expansion.xml, expansion.sources
+        else:
+            data = given[path] if path in given else read_bounded(path, "URDF", display=shown)
+        display = f"{shown} (expanded)" if kind == "xacro" else shown
+        from descgen.read.urdf import read_urdf_text
+
+        robot, found = read_urdf_text(data, display, sources)
+    robot, more = with_given_files(robot, options, given)
+    found += more
+    if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
+        return robot, found
+    status, files = mesh_paths.mesh_status(robot, path, options.package_paths)
+    resolved = tuple((name, str(p)) for name, p in files.items())
+    return dataclasses.replace(robot, mesh_status=tuple(status.items()), mesh_files=resolved), found
+
+
+def with_given_files(
+    robot: Robot, options: Options, given: Mapping[Path, bytes] | None = None
+) -> tuple[Robot, list[Finding]]:
+    """``robot`` with the SRDF, controllers YAML and MoveIt config named on the command line in
+    place of its own, and what their readers reported (``given``: as load_description)."""
+    found: list[Finding] = []
+    given = given or {}
+    if options.srdf is not None:
+        from descgen.read.srdf import read_srdf_text
+
+        semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF", given), str(options.srdf))
+        found += more
+        robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
+    if options.controllers is not None:
+        from descgen.read.controllers import read_controllers_file  # PyYAML only when a YAML is given
+
+        cf = read_controllers_file(
+            _read(options.controllers, "controllers YAML", given).decode("utf-8", "replace"),
+            str(options.controllers),
+            options.launch_args,
+        )
+        found += cf.found
+        rc = robot.ros2_control or Ros2Control("", where=Where(str(options.controllers)))
+        robot = dataclasses.replace(
+            robot,
+            ros2_control=dataclasses.replace(
+                rc, controllers=cf.controllers, update_rate=cf.update_rate, update_rate_where=cf.update_rate_where
+            ),
+        )
+    if options.moveit_config is not None:  # its SRDF and ros2_controllers.yaml only when not given
+        from descgen.read.moveit_package import attach
+
+        robot, more = attach(
+            robot, options.moveit_config, read_srdf=options.srdf is None, read_controllers=options.controllers is None
+        )
+        found += more
+    return robot, found
+
+
+def _read(path: Path, what: str, given: Mapping[Path, bytes]) -> bytes:
+    return given[path] if path in given else read_bounded(path, what)
+
+
+def audit(path: Path, options: Options = Options()) -> list[Finding]:
+    """Every finding for one description: what its readers reported, then every rule; for a
+    plain URDF audited again unchanged, last run's (descgen/audit/findings_cache.py)."""
+    from descgen.audit import findings_cache
+    from descgen.audit.registry import run
+
+    kept = _cache_inputs(path, options)
+    if kept is not None:
+        hit = findings_cache.get(kept)
+        if hit is not None:
+            return hit
+    robot, found = load_description(path, options, kept.data if kept is not None else None)
+    found += run(robot)
+    if kept is not None:
+        findings_cache.put(kept, robot, found)
+    return found
+
+
+def audit_paths(
+    paths: Sequence[Path], options: Options = Options(), jobs: int = 1, step: Step | None = None
+) -> tuple[list[Finding], bool]:
+    """Every finding of every description in ``paths``, in their order, and whether any was
+    unusable (its input errors are among the findings, so one unreadable file does not hide
+    the others'). ``jobs`` > 1 audits that many at once in separate processes (an audit is
+    CPU-bound Python; descgen/infra/workers.py: a worker that dies is replaced by this process; a
+    worker ends without atexit, and keeps the mesh facts it measured because descgen/meshes/load.py
+    saves the index as it measures); ``step(1)`` is called as each one is done."""
+    from functools import partial
+
+    from descgen.infra.workers import map_in_processes
+
+    if jobs > 1 and len(paths) > 1:
+        from descgen.audit.registry import load
+        from descgen.read import urdf  # noqa: F401  (imported once here: forked workers start with it)
+
+        load()
+    outcomes = map_in_processes(partial(_audit_one, options=options), paths, jobs, step)
+    found = [f for fs, _ in outcomes for f in fs]
+    return found, any(unusable for _, unusable in outcomes)
+
+
+def _audit_one(path: Path, options: Options) -> tuple[list[Finding], bool]:
+    """One description's findings and whether it was unusable (its input errors returned, not
+    raised: they cross a process boundary as data)."""
+    try:
+        return audit(path, options), False
+    except InputError as exc:
+        return list(exc.findings), True
+
+
+def _cache_inputs(path: Path, options: Options) -> findings_cache.Inputs | None:
+    """The findings cache's key for this audit; None for what it does not keep."""
+    from descgen.audit import findings_cache
+
+    if options.moveit_config is not None or kind_of(path) != "urdf":
+        return None
+    return findings_cache.inputs(path, options.srdf, options.controllers, options.launch_args, options.package_paths)

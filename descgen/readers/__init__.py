@@ -1,1 +1,0 @@
-"""Readers of descriptions descgen did not write: URDF, Xacro, SRDF, controllers YAML."""
