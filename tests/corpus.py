@@ -3,6 +3,11 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from descgen.commands.importer.run import Outcome
+    from descgen.core.findings import InputError
 
 
 def share() -> Path | None:
@@ -30,6 +35,32 @@ def descriptions() -> list[tuple[str, Path, Path | None]]:
         srdf = robots / package / "srdf" / (urdf.stem + ".srdf")
         out.append((urdf.relative_to(robots).as_posix(), urdf, srdf if srdf.is_file() else None))
     return out
+
+
+_IMPORTED: dict[tuple[Path, Path | None], Outcome | InputError] = {}
+
+
+def imported(urdf: Path, srdf: Path | None) -> Outcome:
+    """``descgen import`` of a corpus robot with its SRDF and the corpus as package path, as
+    docs/import-corpus.md's rows are made: once per process (importing the corpus is minutes),
+    for tests/test_import_corpus.py, tests/test_import_oracle.py and tests/test_import_multidof.py,
+    which only read the outcome. An unusable robot's InputError is raised again, each time."""
+    from descgen.commands.importer.run import ImportOptions, import_description
+    from descgen.core.findings import InputError
+    from descgen.read.description import Options
+
+    if (urdf, srdf) not in _IMPORTED:
+        root = share()
+        try:
+            outcome = import_description(urdf, ImportOptions(Options(srdf=srdf, package_paths=(root,) if root else ())))
+        except InputError as exc:
+            _IMPORTED[urdf, srdf] = exc
+        else:
+            _IMPORTED[urdf, srdf] = outcome
+    done = _IMPORTED[urdf, srdf]
+    if isinstance(done, InputError):
+        raise InputError(done.findings)
+    return done
 
 
 def audit_all() -> dict[str, list[object]]:

@@ -34,6 +34,7 @@ from descgen.core.model import (
     Sphere,
     Visual,
 )
+from descgen.infra import keys
 from descgen.meshes import cache as mesh_cache
 from descgen.physics import extent, kinematics, rigid, transforms, zero_pose
 
@@ -232,9 +233,10 @@ def test_name013_closeness_is_numpy_allclose(r: tuple[float, float, float]) -> N
     assert conventions._allclose(rot, rigid.IDENTITY, 1e-6) == bool(np.allclose(np.array(rot), np.eye(3), atol=1e-6))
 
 
-@pytest.mark.parametrize("dist", ["trimesh", "pycollada", "numpy"])
+@pytest.mark.parametrize("dist", mesh_cache.LIBRARIES)
 def test_the_cache_folder_versions_are_importlib_metadata_s(dist: str) -> None:
-    assert mesh_cache._version(dist) == metadata.version(dist)
+    # the mesh cache's folder is named by a key (descgen/infra/keys.py) holding these versions
+    assert keys.libraries([dist]) == {dist: metadata.version(dist)}
 
 
 def test_a_plain_urdf_audit_imports_neither_numpy_nor_importlib_metadata(tmp_path: Path) -> None:

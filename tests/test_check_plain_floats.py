@@ -1,7 +1,8 @@
 """``check`` without numpy (issue 17): the known poses (POSE010, evidence/known_poses.md, the pose
 images' record) in plain floats, proof 2's comparison without numpy on the common path, the
-collision matrix and the sweep table importing numpy only when they compute. Oracles: the numpy
-kinematics they replaced (descgen.physics.kinematics, itself held to pinocchio), pinocchio, numpy's
+collision matrix and the sweep table importing numpy only when they compute. Oracles: pinocchio
+(the known poses' rows, from a URDF written out here, and relative frames), the numpy kinematics the
+pose images' scene replaced (descgen.physics.kinematics, itself held to pinocchio), numpy's
 ``linalg.inv`` and ``array2string``, a fresh interpreter's ``sys.modules``. Nothing is timed."""
 
 from __future__ import annotations
@@ -33,21 +34,43 @@ coord = st.floats(-1.0, 1.0, allow_nan=False)
 unit_axis = st.tuples(coord, coord, coord).filter(lambda a: math.hypot(*a) > 1e-3)
 
 
-# -- the numpy path the known poses took before (the reference) ----------------------------------
+# -- the reference: pinocchio's frames ------------------------------------------------------------
 
 
-def _numpy_rows(robot: Robot) -> list[poses.Row]:
-    """poses.evaluate as it was: numpy 4x4 forward kinematics and ``linalg.inv`` for a base."""
+def _urdf(robot: Robot) -> str:
+    """The robot as URDF text, written out here for pinocchio (not by descgen's renderer)."""
+
+    def vec(v: tuple[float, ...]) -> str:
+        return " ".join(repr(float(x)) for x in v)
+
+    out = [f'<robot name="{robot.name}">', *(f'<link name="{lk.name}"/>' for lk in robot.links)]
+    for j in robot.joints:
+        out.append(f'<joint name="{j.name}" type="{j.type}"><parent link="{j.parent}"/><child link="{j.child}"/>')
+        out.append(f'<origin xyz="{vec(j.origin.xyz)}" rpy="{vec(j.origin.rpy)}"/>')
+        if j.axis is not None:
+            out.append(f'<axis xyz="{vec(j.axis)}"/>')
+        if j.limit is not None:
+            given = {k: getattr(j.limit, k) for k in ("lower", "upper", "effort", "velocity")}
+            out.append("<limit " + " ".join(f'{k}="{v!r}"' for k, v in given.items() if v is not None) + "/>")
+        out.append("</joint>")
+    return "".join([*out, "</robot>"])
+
+
+def _pinocchio_rows(pin: Any, robot: Robot) -> list[poses.Row]:
+    """What the known poses should say, from pinocchio's frames: each measured frame's position
+    in the frame it is measured from (the root when none), minus the measured position. Mimic
+    followers are set from their leaders first (pinocchio's URDF model leaves them free)."""
+    from descgen.physics import mimic
+
+    urdf = _urdf(robot)
     rows: list[poses.Row] = []
     root = robot.root() or ""
     for kp in robot.known_poses:
-        frames = kinematics.forward(robot, dict(kp.joints))
+        frames = pin_frames(pin, urdf, mimic.resolve(robot, dict(kp.joints)))
         for fm in kp.frames:
-            t = kinematics.relative(frames, fm.frame, fm.relative_to)
-            if t is None:
-                rows.append(poses.Row(kp, fm, None, None, fm.relative_to or root))
-                continue
-            model = (float(t[0, 3]) + 0.0, float(t[1, 3]) + 0.0, float(t[2, 3]) + 0.0)
+            base = np.eye(4) if fm.relative_to is None else frames[fm.relative_to]
+            t = np.linalg.solve(base, frames[fm.frame])  # base^-1 frame
+            model = (float(t[0, 3]) + 0.0, float(t[1, 3]) + 0.0, float(t[2, 3]) + 0.0)  # + 0.0: no -0.0 to print
             error = tuple(m - x for m, x in zip(model, fm.xyz, strict=True))
             rows.append(poses.Row(kp, fm, model, (error[0], error[1], error[2]), fm.relative_to or root))
     return rows
@@ -86,8 +109,8 @@ def posed_trees(draw: st.DrawFn) -> Robot:
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(posed_trees())
-def test_known_poses_in_plain_floats_are_the_numpy_rows_and_messages(robot: Robot) -> None:
-    got, want = poses.evaluate(robot), _numpy_rows(robot)
+def test_known_poses_in_plain_floats_are_pinocchios_rows_and_messages(pin, robot: Robot) -> None:  # type: ignore[no-untyped-def]
+    got, want = poses.evaluate(robot), _pinocchio_rows(pin, robot)
     assert len(got) == len(want)
     for g, w in zip(got, want, strict=True):
         assert (g.pose, g.measurement, g.relative_to) == (w.pose, w.measurement, w.relative_to)
@@ -99,12 +122,12 @@ def test_known_poses_in_plain_floats_are_the_numpy_rows_and_messages(robot: Robo
     assert [f.message for f in poses.findings(robot, got)] == [f.message for f in poses.findings(robot, want)]
 
 
-def test_the_example_s_known_poses_are_the_numpy_rows_to_the_printed_digit() -> None:
+def test_the_example_s_known_poses_are_pinocchios_rows_to_the_printed_digit(pin) -> None:  # type: ignore[no-untyped-def]
     from descgen.core import display
 
     for spec in (EXAMPLE, ROOT / "tests" / "data" / "mimic" / "gripper.yaml"):
         robot = load_spec(spec).robot
-        got, want = poses.evaluate(robot), _numpy_rows(robot)
+        got, want = poses.evaluate(robot), _pinocchio_rows(pin, robot)
         assert [(display.mm(g.model or ()), g.ok) for g in got] == [(display.mm(w.model or ()), w.ok) for w in want]
         assert [f"{g.worst * 1000:.2f}" for g in got] == [f"{w.worst * 1000:.2f}" for w in want]
 

@@ -95,8 +95,8 @@ def test_check_imports_no_heavy_library(probe: dict[str, dict[str, object]]) -> 
 def test_check_of_recorded_evidence_imports_no_rosbags(tmp_path: Path) -> None:
     """rosbags came with check's control-evidence re-run and the evidence page's tf scenario;
     both are taken from the committed files when their recorded inputs are unchanged. The
-    records are written here by ``descgen report`` on a copy (descgen's code is among the
-    inputs, so the repository's records change with every edit to descgen)."""
+    records are written here by ``descgen report`` on a copy (the repository's records may be of
+    other library versions, or of a format version bumped since: descgen/infra/keys.py)."""
     import shutil
 
     from tests.helpers import cli
@@ -256,7 +256,7 @@ def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
     require_tool("check_urdf")
     files, robot, pkg = _example_plan_inputs()
     rel = f"urdf/{robot.name}.urdf"  # type: ignore[attr-defined]
-    # a joint whose child link does not exist: urdfdom refuses it (reference/urdf.md)
+    # a joint whose child link does not exist: urdfdom refuses it (docs/reference/urdf.md)
     files[rel] = files[rel].replace('<child link="tool_link"/>', '<child link="no_such_link"/>', 1)
     assert "no_such_link" in files[rel]
     named = checks.run_named(files, robot, pkg)  # type: ignore[arg-type]
@@ -270,7 +270,7 @@ def test_check_urdf_started_first_still_catches_a_broken_urdf() -> None:
 @pytest.mark.parametrize(
     ("links", "rejected"),
     [
-        # urdfdom logs these on stderr and still exits 0 (reference/urdf.md): a failure here
+        # urdfdom logs these on stderr and still exits 0 (docs/reference/urdf.md): a failure here
         ('<link name="a"><inertial><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>', True),
         ('<link name="a"><visual><geometry/></visual></link>', True),
         # a name with "Error" in it, printed in the tree on stdout: no error

@@ -33,7 +33,7 @@ def test_lifecycle_order_and_claims_follow_jazzy() -> None:
     cm = load_system(PACKAGE, ROBOT, Plant())
     # hardware_components_initial_state unset: the component is initialised, configured and
     # activated at startup; then the spawner loads (on_init), configures and activates each
-    # controller in turn (reference/ros2_control.md, spawner.py)
+    # controller in turn (docs/reference/ros2_control.md, spawner.py)
     expected = [
         ("WarehouseArmSystem", "on_init", "unconfigured"),
         ("WarehouseArmSystem", "on_configure", "inactive"),

@@ -32,8 +32,8 @@ TRAJECTORY = "specs/trajectories/ready.yaml"
 @pytest.fixture(scope="module")
 def recorded(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A copy of the repository's example (spec, trajectory, both packages) whose control
-    evidence and page were written again here, so they record this descgen's inputs (other
-    work on descgen's code changes its source hash, which the committed records hold)."""
+    evidence and page were written again here, so they record this descgen's inputs (the
+    committed records may be of other library versions, or of a format version bumped since)."""
     root = tmp_path_factory.mktemp("recorded")
     (root / "specs" / "trajectories").mkdir(parents=True)
     shutil.copy(ROOT / SPEC, root / SPEC)
@@ -117,9 +117,34 @@ def test_a_changed_trajectory_runs_the_control_evidence_again(project: Path, cou
     assert counting == ["control"]  # but it was run (the page's inputs did not change)
 
 
-def test_another_descgen_computes_again(project: Path, counting: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
+def test_an_edit_to_descgens_source_alone_computes_nothing_again(
+    project: Path, counting: list[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # committed evidence is keyed by format versions and the release (descgen/infra/keys.py
+    # EVIDENCE), not by the bytes of descgen's source: a comment or a refactoring keeps it current
     monkeypatch.setattr(evidence_hash, "source_digest", lambda: "0" * 64)  # descgen's code edited
+    assert _errors(project) == []
+    assert counting == []
+
+
+@pytest.mark.parametrize("bumped", ["page", "control"])
+def test_another_descgen_computes_again(
+    project: Path, counting: list[str], monkeypatch: pytest.MonkeyPatch, bumped: str
+) -> None:
+    """A bumped format version (what computes the evidence changed) computes it again; another
+    release does too (tests/test_keys.py: the release is in every committed key)."""
+    from descgen.commands.control import record
+
+    bumping = evidence_page if bumped == "page" else record
+    monkeypatch.setattr(bumping, "FORMAT", bumping.FORMAT + 1)
     assert _errors(project) == []  # the same results today
+    assert counting == [bumped]
+
+
+def test_recompute_refuses_every_record(project: Path, counting: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """DESCGEN_RECOMPUTE=1 (tests/test_evidence_recompute.py): computed again though current."""
+    monkeypatch.setenv(evidence_hash.RECOMPUTE_ENV, "1")
+    assert _errors(project) == []
     assert sorted(counting) == ["control", "page"]
 
 
@@ -170,17 +195,13 @@ def test_committed_evidence_outlives_a_python_patch_release(monkeypatch: pytest.
     # runner recomputed every piece of it, importing numpy, when the identity held the patch)
     from types import SimpleNamespace
 
-    from descgen.infra import evidence_hash, result_cache
+    from descgen.infra import keys, result_cache
 
-    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
-    monkeypatch.setattr(result_cache, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
-    committed, cache_key = evidence_hash.descgen_identity(), result_cache.key("x", {})
-    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
-    assert evidence_hash.descgen_identity() == committed
-    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 12, 0, "final", 0)))
-    assert evidence_hash.descgen_identity() != committed
+    monkeypatch.setattr(keys, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
+    committed, cache_key = keys.key("x", 1, {}, (), keys.EVIDENCE), result_cache.key("x", {})
+    monkeypatch.setattr(keys, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
+    assert keys.key("x", 1, {}, (), keys.EVIDENCE) == committed
     # the local result cache stays strict: another patch release is another key
-    monkeypatch.setattr(evidence_hash, "sys", SimpleNamespace(version_info=(3, 11, 7, "final", 0)))
-    assert result_cache.key("x", {}) == cache_key
-    monkeypatch.setattr(result_cache, "sys", SimpleNamespace(version_info=(3, 11, 2, "final", 0)))
     assert result_cache.key("x", {}) != cache_key
+    monkeypatch.setattr(keys, "sys", SimpleNamespace(version_info=(3, 12, 0, "final", 0)))
+    assert keys.key("x", 1, {}, (), keys.EVIDENCE) != committed

@@ -21,7 +21,7 @@ import pytest
 
 from descgen.audit import findings_cache, registry
 from descgen.core.findings import Finding
-from descgen.infra import result_cache
+from descgen.infra import result_cache, stat_index
 from descgen.read.description import Options, audit
 from tests.helpers import ROOT
 
@@ -35,7 +35,7 @@ def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
     opens it); a change during the audit is still caught."""
     folder = tmp_path / "cache"
     monkeypatch.setenv("DESCGEN_CACHE_DIR", str(folder))
-    monkeypatch.setattr(findings_cache, "RACY_NS", 0)
+    monkeypatch.setattr(stat_index, "RACY_NS", 0)
     yield folder
 
 
@@ -203,10 +203,10 @@ def test_a_mesh_edited_during_the_audit_is_not_kept(cache: Path, arm: Path, monk
 def test_a_mesh_changed_just_before_is_not_kept(cache: Path, arm: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Within the racy window a rewrite may keep every stat field (coarse time stamps): the
     entry waits until the mesh is older. Oracle: the copy's own ctime, just now."""
-    monkeypatch.setattr(findings_cache, "RACY_NS", 2_000_000_000)
+    monkeypatch.setattr(stat_index, "RACY_NS", 2_000_000_000)
     audit(arm, Options())
     assert _entries(cache) == []
-    monkeypatch.setattr(findings_cache, "RACY_NS", 0)
+    monkeypatch.setattr(stat_index, "RACY_NS", 0)
     audit(arm, Options())
     assert len(_entries(cache)) == 1
 
@@ -289,9 +289,9 @@ def test_a_hit_imports_neither_lxml_nor_the_rules(arm: Path, tmp_path: Path) -> 
     probe = (
         "import json, sys\n"
         "from pathlib import Path\n"
-        "from descgen.audit import findings_cache\n"
+        "from descgen.infra import stat_index\n"
         "from descgen.read.description import Options, audit\n"
-        "findings_cache.RACY_NS = 0  # the fixture's meshes were copied a moment ago\n"
+        "stat_index.RACY_NS = 0  # the fixture's meshes were copied a moment ago\n"
         "found = audit(Path(sys.argv[1]), Options())\n"
         "print('PROBE' + json.dumps([len(found), sorted(m for m in sys.modules if m.startswith(('lxml', 'numpy', "
         "'descgen.audit.rules', 'descgen.read.urdf', 'descgen.read.xacro', 'descgen.read.srdf')))]))\n"

@@ -41,12 +41,21 @@ def snapshot(folder: Path) -> dict[str, str]:
     }
 
 
-@pytest.fixture
-def generated(tmp_path: Path) -> tuple[Path, Path]:
-    spec = project(tmp_path)
-    outcome = generate(spec)
+@pytest.fixture(scope="module")
+def generated_once(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A scratch project with the example generated, once for the module (a generate is most of
+    a second); each test gets a copy of it, as the tests edit what they get."""
+    root = tmp_path_factory.mktemp("generated-once")
+    outcome = generate(project(root))
     assert not outcome.failed, outcome.findings
-    return spec, tmp_path / "generated" / PKG
+    return root
+
+
+@pytest.fixture
+def generated(generated_once: Path, tmp_path: Path) -> tuple[Path, Path]:
+    # nothing generate writes depends on where the project is (test_deterministic_twice_and_...)
+    shutil.copytree(generated_once, tmp_path, symlinks=True, dirs_exist_ok=True)
+    return tmp_path / "specs" / "warehouse_arm.yaml", tmp_path / "generated" / PKG
 
 
 @pytest.mark.e2e

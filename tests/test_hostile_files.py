@@ -275,16 +275,16 @@ def test_a_non_finite_srdf_group_state_is_a_finding(tmp_path: Path, capsys: pyte
     assert f"{srdf}:4:1: error[READ042]: " in err
 
 
-# --- controllers YAML of the wrong shape ---------------------------------------------------
+# --- controllers YAML of the wrong shape: files ROS's parameter parser refuses (READ045) ------
 
 
 @pytest.mark.parametrize(
     ("text", "code", "line"),
     [
-        ("controller_manager:\n  - a\n  - b\n", "READ043", 2),
-        ("controller_manager:\n  ros__parameters: [1, 2]\n", "READ043", 2),
-        ("controller_manager:\n  ros__parameters: 5\n", "READ043", 2),
-        ("arm:\n  ros__parameters: hello\n", "READ043", 2),
+        ("controller_manager:\n  - a\n  - b\n", "READ045", 2),
+        ("controller_manager:\n  ros__parameters: [1, 2]\n", "READ045", 2),
+        ("controller_manager:\n  ros__parameters: 5\n", "READ045", 2),
+        ("arm:\n  ros__parameters: hello\n", "READ045", 2),
         ("controller_manager:\n  ros__parameters:\n    update_rate: .inf\n", "READ042", 3),
         ("arm:\n  ros__parameters:\n    type: x/Y\n    gain: .nan\n", "READ042", 4),
     ],

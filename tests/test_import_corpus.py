@@ -19,7 +19,7 @@ from descgen.commands.importer.run import ImportOptions, import_description
 from descgen.core.findings import InputError
 from descgen.physics.poses import evaluate
 from descgen.read.description import Options
-from tests.corpus import descriptions, share
+from tests.corpus import descriptions, imported
 from tests.helpers import ROOT
 
 DOC = ROOT / "docs" / "import-corpus.md"
@@ -46,9 +46,7 @@ def _verdict(outcome: object) -> str:
 def row(ident: str, urdf: Path, srdf: Path | None) -> str:
     """One table row: counts taken from the written spec's YAML, so the doc says what a reviewer
     finds in the file."""
-    root = share()
-    opts = ImportOptions(Options(srdf=srdf, package_paths=(root,) if root else ()))
-    outcome = import_description(urdf, opts)
+    outcome = imported(urdf, srdf)
     data = yaml.safe_load(outcome.imported.spec_text)
     kept = Counter(re.match(r"<([\w:.-]+)", p["xml"]).group(1) for p in data.get("passthrough", []))  # type: ignore[union-attr]
     passthrough = ", ".join(f"{t}×{n}" for t, n in sorted(kept.items())) or "—"

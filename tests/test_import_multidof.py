@@ -21,7 +21,7 @@ from descgen.core.findings import InputError
 from descgen.prove.semantic_roundtrip import srdf_roundtrip
 from descgen.read.description import Options
 from descgen.render import render_package
-from tests.corpus import descriptions, share
+from tests.corpus import descriptions, imported
 from tests.helpers import ROOT
 
 SPEC = (ROOT / "specs" / "warehouse_arm.yaml").read_text()
@@ -125,8 +125,7 @@ CORPUS = {ident: (urdf, srdf) for ident, urdf, srdf in descriptions()}
 def test_import_keeps_a_floating_root_joint_state() -> None:
     urdf, srdf = CORPUS["a1_description/urdf/a1.urdf"]
     assert srdf is not None
-    root = share()
-    outcome = import_description(urdf, ImportOptions(Options(srdf=srdf, package_paths=(root,) if root else ())))
+    outcome = imported(urdf, srdf)  # the import tests/test_import_corpus.py checks a1's row with
     assert outcome.proven
     assert "IMP011" not in {f.code for f in outcome.imported.report}
     original = etree.parse(str(srdf)).getroot()

@@ -25,10 +25,8 @@ import numpy as np
 import pytest
 
 from descgen.audit.spec import load_spec_text
-from descgen.commands.importer.run import ImportOptions, import_description
-from descgen.read.description import Options
 from descgen.render import render_package
-from tests.corpus import descriptions, share
+from tests.corpus import descriptions, imported
 from tests.helpers import ROOT
 
 TOL = 1e-9
@@ -54,8 +52,7 @@ pytestmark = pytest.mark.skipif(not PROVEN, reason="example-robot-data is not in
 
 
 def _generated_urdf(tmp_path: Path, urdf: Path, srdf: Path | None) -> Path:
-    root = share()
-    outcome = import_description(urdf, ImportOptions(Options(srdf=srdf, package_paths=(root,) if root else ())))
+    outcome = imported(urdf, srdf)
     assert outcome.proven, outcome.imported.differences[:5]
     robot = load_spec_text(outcome.imported.spec_text, "r.yaml", rules=False).robot
     out = tmp_path / "generated.urdf"

@@ -12,11 +12,12 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
 
-from descgen.read.controllers import load_substituted, read_controllers_text
+from descgen.read.controllers import parse_substituted, read_controllers_text
 from tests.helpers import ROOT, cli
 
 CORPUS = ROOT / "tests" / "data" / "xacro_corpus"
@@ -70,28 +71,34 @@ def test_a_wrong_value_gives_true_unknown_joint_findings(prefix: str, names: lis
     assert "CTRL052" not in _codes(found)
 
 
+def _params(text: str, args: dict[str, str]) -> tuple[dict[str, Any], Any]:
+    parsed = parse_substituted(text, "f.yaml", args)
+    return {p.name: p for p in parsed.params.nodes[0].params}, parsed
+
+
 def test_marks_point_into_the_file_as_written() -> None:
-    # 'a: [$(var p), b]': b is at column 15 of the file; after substitution it would be at 17
-    doc, sites, found = load_substituted("a: [$(var p), b]\nc: $(var q)\n", "f.yaml", {"p": "xxxxxxxxxx"})
-    assert doc.data == {"a": ["xxxxxxxxxx", "b"], "c": "$(var q)"}
-    assert (doc.where(("a", 1)).line, doc.where(("a", 1)).col) == (1, 15)
-    assert [(f.code, f.where.line, f.where.col) for f in found] == [("CTRL052", 2, 4)]
-    assert [s.value for s in sites] == ["xxxxxxxxxx", None]
+    # '    a: [$(var p), b]': b is at column 19 of the file; after substitution it would be at 21
+    text = "n:\n  ros__parameters:\n    a: [$(var p), b]\n    c: $(var q)\n"
+    got, parsed = _params(text, {"p": "xxxxxxxxxx"})
+    assert {k: p.value for k, p in got.items()} == {"a": ("xxxxxxxxxx", "b"), "c": "$(var q)"}
+    assert (got["a"].items[1].line, got["a"].items[1].col) == (3, 19)
+    assert [(f.code, f.where.line, f.where.col) for f in parsed.found] == [("CTRL052", 4, 8)]
+    assert [s.value for s in parsed.sites] == ["xxxxxxxxxx", None]
 
 
-def test_values_are_typed_by_yaml_after_substitution_and_defaults_apply() -> None:
-    # launch substitutes the text, then yaml.safe_load reads it: 'update_rate: $(var r)' is a number
+def test_values_are_typed_after_substitution_and_defaults_apply() -> None:
+    # launch substitutes the text, then rcl types it: 'update_rate: $(var r)' is the integer 250
     text = "controller_manager:\n  ros__parameters:\n    update_rate: $(var r)\n    x: $(var s 7)\n"
-    doc, _, found = load_substituted(text, "f.yaml", {"r": "250"})
-    assert doc.data == yaml.safe_load(text.replace("$(var r)", "250").replace("$(var s 7)", "7"))
-    assert found == []
+    got, parsed = _params(text, {"r": "250"})
+    assert {k: p.value for k, p in got.items()} == {"update_rate": 250, "x": 7}
+    assert parsed.found == ()
 
 
 def test_escaped_dollar_is_text_as_launch_reads_it() -> None:
     # launch's grammar: a '$' after a backslash is text, and text loses its backslashes
-    doc, sites, found = load_substituted('a: "\\$(var p)"\nb: $(var p)\n', "f.yaml", {"p": "v"})
-    assert doc.data == {"a": "$(var p)", "b": "v"}
-    assert len(sites) == 1 and found == []
+    got, parsed = _params('n:\n  ros__parameters:\n    a: "\\$(var p)"\n    b: $(var p)\n', {"p": "v"})
+    assert {k: p.value for k, p in got.items()} == {"a": "$(var p)", "b": "v"}
+    assert len(parsed.sites) == 1 and parsed.found == ()
 
 
 def test_env_is_never_read(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -118,11 +125,11 @@ def test_eval_and_command_are_not_run(tmp_path: Path) -> None:
         f"a:\n  ros__parameters:\n    type: x/Y\n    p: $(eval \"__import__('os').system('touch {marker}')\")\n"
         f"    q: $(command touch {marker})\n    r: $(find-pkg-share rclpy)/x\n"
     )
-    doc, sites, found = load_substituted(ctl.read_text(), str(ctl), {})
+    parsed = parse_substituted(ctl.read_text(), str(ctl), {})
     assert not marker.exists()
-    assert [s.kind for s in sites] == ["eval", "command", "find-pkg-share"]
-    assert [(f.code, f.where.line) for f in found] == [("CTRL053", 4), ("CTRL053", 5), ("CTRL053", 6)]
-    assert doc.data["a"]["ros__parameters"]["r"] == "$(find-pkg-share rclpy)/x"  # left as written
+    assert [s.kind for s in parsed.sites] == ["eval", "command", "find-pkg-share"]
+    assert [(f.code, f.where.line) for f in parsed.found] == [("CTRL053", 4), ("CTRL053", 5), ("CTRL053", 6)]
+    assert parsed.params.nodes[0].get("r").value == "$(find-pkg-share rclpy)/x"  # left as written
 
 
 @pytest.mark.parametrize(

@@ -185,7 +185,7 @@ _PARENT = textwrap.dedent(
     from descgen.infra import workers
 
     def slow(n):
-        print(os.getpid(), flush=True)
+        os.write(1, f"{os.getpid()}\\n".encode())  # one write below PIPE_BUF: two workers' lines never mix
         time.sleep(120)  # far longer than the test: a worker alive at the end was not killed
         return n
 

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 import trimesh
 
+from descgen.infra import stat_index
 from descgen.meshes import cache as mesh_cache
 from descgen.meshes import load as meshes
 from descgen.read.description import Options, audit
@@ -202,7 +203,7 @@ def _no_hashing(monkeypatch: pytest.MonkeyPatch) -> None:
 
 def _indexed(cache: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[Path, meshes.MeshFacts]:
     """A box measured with the racy window off (a test's files are seconds old), index written."""
-    monkeypatch.setattr(mesh_cache, "RACY_NS", 0)
+    monkeypatch.setattr(stat_index, "RACY_NS", 0)
     mesh = _box(tmp_path / "box.stl", (0.1, 0.2, 0.3))
     truth = meshes.measure(mesh)
     mesh_cache.save_index()
@@ -251,7 +252,7 @@ def test_a_rewritten_file_with_another_mtime_is_hashed_again(cache, tmp_path, mo
 @pytest.mark.parametrize("field", range(4))
 def test_any_stat_field_that_differs_misses(cache, tmp_path, monkeypatch, field: int) -> None:
     mesh, _ = _indexed(cache, tmp_path, monkeypatch)
-    stat = mesh_cache.stat_of(mesh.stat())
+    stat = stat_index.stat_of(mesh.stat())
     assert mesh_cache.known_key(str(mesh), stat) == _entries(cache)[0].stem
     other = tuple(v + 1 if k == field else v for k, v in enumerate(stat))
     assert mesh_cache.known_key(str(mesh), other) is None  # size, mtime, inode, ctime: each one counts
@@ -306,7 +307,7 @@ def test_a_tampered_index_is_ignored(cache, tmp_path, monkeypatch, how: str) -> 
     mesh, truth = _indexed(cache, tmp_path, monkeypatch)
     index = _index_file(cache)
     _tamper_index(index, how, mesh)
-    assert mesh_cache.known_key(str(mesh), mesh_cache.stat_of(mesh.stat())) is None
+    assert mesh_cache.known_key(str(mesh), stat_index.stat_of(mesh.stat())) is None
     _forget()
     hashed: list[bytes] = []
     real = meshes._content_key
@@ -338,7 +339,7 @@ def test_a_damaged_facts_copy_in_the_index_falls_back_to_the_entry_file(cache, t
     doc = json.loads(index.read_text())
     doc["entries"][0][6] = _damage_copy(doc["entries"][0][6], how)
     index.write_text(json.dumps(doc))
-    key, facts = mesh_cache.known(str(mesh), mesh_cache.stat_of(mesh.stat()), "stl") or ("", "missing")
+    key, facts = mesh_cache.known(str(mesh), stat_index.stat_of(mesh.stat()), "stl") or ("", "missing")
     assert key == _entries(cache)[0].stem and facts is None
     _forget()
     _no_hashing(monkeypatch)
@@ -365,7 +366,7 @@ def test_an_index_entry_pointing_at_another_meshes_key_is_what_stat_data_prevent
     doc = json.loads(index.read_text())
     doc["entries"][0][2] -= 5_000_000_000  # an mtime the file does not have
     index.write_text(json.dumps(doc))
-    assert mesh_cache.known_key(str(mesh), mesh_cache.stat_of(mesh.stat())) is None
+    assert mesh_cache.known_key(str(mesh), stat_index.stat_of(mesh.stat())) is None
 
 
 # GEOM032 on alex_nub_hands needs its meshes' boxes; allegro's palm mesh bounds INER005; go1 has DAE

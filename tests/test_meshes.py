@@ -146,7 +146,7 @@ def test_measure_box_in_file_units(tmp_path: Path) -> None:
 def test_collada_unit_scales_the_size(tmp_path: Path) -> None:
     box = trimesh.creation.box([100, 200, 300])
     dae = trimesh.exchange.dae.export_collada(box).decode()
-    assert "<unit" not in dae  # trimesh writes none (reference/viewer_and_meshes.md)
+    assert "<unit" not in dae  # trimesh writes none (docs/reference/viewer_and_meshes.md)
     dae = dae.replace("<asset>", '<asset><unit meter="0.001" name="millimeter"/>', 1)
     path = tmp_path / "box.dae"
     path.write_text(dae)

@@ -14,6 +14,9 @@ from descgen.render import default_templates, render_package
 
 from .conftest import EXAMPLE
 
+# "without the cache" means what it says: no compiled copy shared by the tests either (conftest.py)
+pytestmark = pytest.mark.cold_templates
+
 
 def _fresh(monkeypatch: pytest.MonkeyPatch, folder: str) -> None:
     monkeypatch.setenv("DESCGEN_CACHE_DIR", folder)

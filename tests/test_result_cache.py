@@ -209,10 +209,15 @@ def test_versions_are_importlib_metadatas() -> None:
 
 
 def test_source_digest_is_the_pathlib_walks() -> None:
-    """The reference: the walk evidence_hash.source_digest did before (pathlib, sorted paths)."""
-    root = Path(evidence_hash.__file__).resolve().parent
+    """The reference: the walk evidence_hash.source_digest did before (pathlib, sorted paths),
+    over the whole package (not only descgen/infra/, where evidence_hash.py lives since the layout)."""
+    import descgen
+
+    root = Path(descgen.__file__).resolve().parent
+    files = sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+    assert root / "audit" / "rules" / "joints.py" in files and root / "templates" / "robot.urdf.j2" in files
     h = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+    for path in files:
         h.update(path.relative_to(root).as_posix().encode("utf-8") + b"\0")
         h.update(hashlib.sha256(path.read_bytes()).digest())
     evidence_hash.source_digest.cache_clear()

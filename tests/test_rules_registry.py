@@ -112,6 +112,33 @@ def test_bad_code_is_refused(code: str) -> None:
 
 
 @pytest.mark.usefixtures("clean_rules")
+def test_a_retired_rule_code_is_never_reused() -> None:
+    """A rule that is gone keeps its entry in the catalogue (group "rule", retired): @rule refuses
+    its number, with any name, and ``descgen rules`` still explains it."""
+    from descgen import codes
+    from descgen.audit.catalogue import explain
+
+    code = _free_code("JOINT")
+    saved, names = dict(codes.CODES), set(codes.NAMES)
+    why = "the rule is gone; its findings are reported by another rule now"
+    try:
+        with pytest.raises(ValueError, match="unknown group"):  # only a retired code may sit in group "rule"
+            codes.register(codes.Code(code, "test-retired-rule", "error", "rule", "What it did.", why))
+        retired = codes.Retired(30, "merged into JOINT004")
+        codes.register(codes.Code(code, "test-retired-rule", "error", "rule", "What it did.", why, retired))
+        entry = explain(code)
+        assert entry is not None and (entry.group, entry.status) == ("rule", "retired")
+        with pytest.raises(ValueError, match=rf"duplicates a catalogue code \({code} is retired by issue 30"):
+            registry.rule(code, "a-fresh-rule-name", "error")(_dummy)
+        assert code not in RULES
+    finally:
+        codes.CODES.clear()
+        codes.CODES.update(saved)
+        codes.NAMES.clear()
+        codes.NAMES.update(names)
+
+
+@pytest.mark.usefixtures("clean_rules")
 def test_undocumented_rule_is_refused() -> None:
     before = dict(RULES)
     with pytest.raises(ValueError, match="doc"):

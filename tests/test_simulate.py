@@ -241,7 +241,7 @@ def test_a_package_mesh_reaches_mujoco(tmp_path: Path) -> None:
     ("filename", "why"),
     [
         ("package://bot_description/meshes/gone.stl", "is not a file inside"),
-        ("package://bot_description/meshes/cube.dae", "MuJoCo reads only"),
+        ("package://bot_description/meshes/cube.dae", "COLLADA file that cannot be read"),  # converted when readable
         ("../../../../../../etc/hostname", "is not a file inside"),
         ("file:///etc/hostname", "is not a file inside"),
     ],

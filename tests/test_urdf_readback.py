@@ -1,6 +1,6 @@
 """The lxml read-back reader of proof 2 (descgen/read/urdf_readback.py) against its oracles:
 yourdfpy on every example-robot-data URDF and on the generated one, urdfdom's check_urdf on
-what it refuses, and hand-computed rotations and defaults (reference/urdf.md)."""
+what it refuses, and hand-computed rotations and defaults (docs/reference/urdf.md)."""
 
 from __future__ import annotations
 
@@ -113,7 +113,7 @@ def _rz(a: float) -> np.ndarray:
     "rpy", [(0.3, 0.0, 0.0), (0.0, -1.1, 0.0), (0.0, 0.0, 2.0), (0.4, -0.7, 1.9), (3.0, 1.5, -2.5)]
 )
 def test_rpy_is_fixed_axis_xyz(rpy: tuple[float, float, float]) -> None:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (reference/urdf.md, urdfdom's setFromRPY)."""
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (docs/reference/urdf.md, urdfdom's setFromRPY)."""
     m = np.array(rb.rpy_matrix((1.0, -2.0, 0.5), rpy))
     want = _rz(rpy[2]) @ _ry(rpy[1]) @ _rx(rpy[0])
     assert np.allclose(m[:3, :3], want, atol=1e-15, rtol=0)
@@ -149,7 +149,7 @@ _DEFAULTS = """<robot name="r">
 
 
 def test_urdfdom_defaults() -> None:
-    """Each default as reference/urdf.md gives it for urdfdom."""
+    """Each default as docs/reference/urdf.md gives it for urdfdom."""
     r = rb.read(_DEFAULTS)
     a, _, _ = r.links
     j, k = r.joints
@@ -165,7 +165,7 @@ def test_urdfdom_defaults() -> None:
     assert (j.line, k.line) == (8, 15)
 
 
-# urdfdom refuses each of these (reference/urdf.md, "Fatal"); so must the read-back
+# urdfdom refuses each of these (docs/reference/urdf.md, "Fatal"); so must the read-back
 _JOINT = '<joint name="j" type="{type}"><parent link="a"/><child link="b"/>{inner}</joint>'
 _LIMIT = '<limit effort="1" velocity="1" lower="-1" upper="1"/>'
 FATAL = {

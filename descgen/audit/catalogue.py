@@ -1,13 +1,13 @@
 """Every finding code descgen can report, as ``descgen rules`` and SARIF list them: the audit
 rules (registered by ``@rule`` in descgen/audit/rules/) beside the codes the other stages
-register in descgen/codes/. The audit layer is the lowest that sees both."""
+declare in descgen/codes/. The audit layer is the lowest that sees both."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
 from descgen.audit.registry import iter_rules
-from descgen.codes import CODES, GROUPS, Entry, doc_of
+from descgen.codes import CODES, Entry, doc_of, status_name, status_note
 
 
 def _rules() -> dict[str, Entry]:
@@ -18,14 +18,15 @@ def _rules() -> dict[str, Entry]:
 
 
 def explain(code: str) -> Entry | None:
-    """The catalogue entry for ``code`` (an audit rule or a registered code), or None."""
+    """The catalogue entry for ``code`` (an audit rule or a registered code, retired ones too), or None."""
     return next((e for e in entries() if e.code == code), None)
 
 
 def entries() -> Iterator[Entry]:
-    """Every code, grouped as in GROUPS, then by code."""
+    """Every code, rules and the rest, retired and redirected ones too, sorted by code."""
     both = dict(_rules())
     for code, c in CODES.items():
-        both[code] = Entry(c.code, c.name, c.severity, c.group, c.summary, doc_of(c))
-    order = list(GROUPS)
-    yield from sorted(both.values(), key=lambda e: (order.index(e.group), e.code))
+        both[code] = Entry(
+            c.code, c.name, c.severity, c.group, c.summary, doc_of(c), status_name(c.status), status_note(c.status)
+        )
+    yield from sorted(both.values(), key=lambda e: e.code)

@@ -8,15 +8,16 @@ function of
   launch arguments the controllers YAML is read with;
 - where each mesh reference resolves (descgen/meshes/paths.py: the description's real folder,
   the package paths, the package.xml files on the way) and the content of each mesh found;
-- descgen itself (its source hash, descgen/infra/evidence_hash.py) and the libraries that read the
-  files and measure the meshes.
+- descgen itself (the whole of its source, as every local cache: descgen/infra/keys.py ``LOCAL``)
+  and the libraries that read the files and measure the meshes.
 
 The key (descgen/infra/result_cache.py) holds the first and the last. The entry records the second:
 every mesh name with its state, the file it resolved to and that file's stat data. A hit
 resolves the recorded names again and stats the files; any difference is a miss, and the
-description is audited as without the cache. Stat data stands for a mesh's content exactly as
-in the mesh cache's stat index (descgen/meshes/cache.py), with the same trust (docs/security.md):
-whoever can write the cache folder can make audit print what they like.
+description is audited as without the cache. Stat data stands for a mesh's content through the
+one stat shortcut the mesh cache's index uses too (descgen/infra/stat_index.py: the same fields,
+the same racy window), with the same trust (docs/security.md): whoever can write the cache folder
+can make audit print what they like.
 
 A Xacro (includes, arguments, ``$(find)``), a spec and a MoveIt config folder read an
 open-ended set of files, so their audits are not kept. An entry is data: read with a bound,
@@ -25,7 +26,6 @@ checked for shape, decoded into findings field by field; anything else is a miss
 
 from __future__ import annotations
 
-import os
 import re
 import time
 from collections.abc import Mapping, Sequence
@@ -36,10 +36,9 @@ from descgen.core.cache_dir import cache_root
 from descgen.core.findings import SEVERITIES, Finding, InputError, Severity, Where
 from descgen.core.model import Robot
 from descgen.core.record import record
-from descgen.infra import result_cache
+from descgen.infra import result_cache, stat_index
 from descgen.infra.evidence_hash import sha256
 from descgen.infra.safeio import read_bounded
-from descgen.meshes.cache import stat_of
 from descgen.meshes.paths import resolve_names
 
 KIND = "audit"
@@ -48,7 +47,6 @@ MOST_BYTES = 256 * 1024  # an entry of the corpus is 1-40 kB (talos: ~100 findin
 # what reads the files and measures the meshes (the rules are descgen's source)
 TOOLS = ("lxml", "PyYAML", "numpy", "trimesh", "pycollada")
 MAX_VIA = 64  # macro call depth recorded per location; a plain URDF has none
-RACY_NS = 2_000_000_000  # a mesh changed this shortly before the audit is not vouched for by its stat (as mesh_cache)
 UNMEASURED = "GEOM033"  # a mesh that could not be read may have failed for a passing reason (EIO, EMFILE)
 _CODE = re.compile(r"[A-Z]{2,10}[0-9]{3}")  # every code of the catalogue (descgen/codes/__init__.py)
 
@@ -111,19 +109,18 @@ def get(found: Inputs) -> list[Finding] | None:
 def put(found: Inputs, robot: Robot, findings: Sequence[Finding]) -> None:
     """Record ``findings`` of ``robot`` (audited from ``found``'s bytes). Not when a mesh
     changed during the audit or just before it (its stat data cannot tell the content it was
-    measured with from the content now, git's "racily clean"), nor when a mesh could not be
-    read (the reason may pass)."""
+    measured with from the content now, git's "racily clean": ``stat_index.racy``), nor when a
+    mesh could not be read (the reason may pass)."""
     if any(f.code == UNMEASURED for f in findings):
         return
-    recent = found.started_ns - RACY_NS
     files = dict(robot.mesh_files)
     meshes = []
     for name, state in robot.mesh_status:
         file = files.get(name)
-        stat = _stat(file) if file is not None else None
-        if file is not None and (stat is None or stat[1] >= recent or stat[3] >= recent):
+        stat = stat_index.stat_path(file) if file is not None else None
+        if file is not None and (stat is None or stat_index.racy(stat, found.started_ns)):
             return  # gone, or changed too recently (mtime, ctime) to be told apart by its stat
-        meshes.append([name, state, file, stat])
+        meshes.append([name, state, file, list(stat) if stat is not None else None])
     result_cache.put(KIND, found.key, {"meshes": meshes, "findings": [_row(f) for f in findings]}, KEEP, MOST_BYTES)
 
 
@@ -137,16 +134,9 @@ def _same_meshes(found: Inputs, meshes: list[Any]) -> bool:
         now = files.get(name)
         if status.get(name) != state or (str(now) if now is not None else None) != file:
             return False
-        if now is not None and (not isinstance(stat, list) or list(_stat(str(now)) or ()) != stat):
+        if now is not None and (not isinstance(stat, list) or list(stat_index.stat_path(str(now)) or ()) != stat):
             return False
     return True
-
-
-def _stat(path: str) -> list[int] | None:
-    try:
-        return list(stat_of(os.stat(path)))
-    except (OSError, ValueError):
-        return None
 
 
 def _row(f: Finding) -> list[Any]:

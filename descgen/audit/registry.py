@@ -11,7 +11,7 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from typing import Literal
 
-from descgen.codes import CODES, NAMES
+from descgen.codes import CODES, NAMES, status_note
 from descgen.core.findings import Finding, Severity, Where
 from descgen.core.model import Robot
 from descgen.core.record import record
@@ -51,8 +51,10 @@ def rule(code: str, name: str, severity: Severity, stage: Stage = "input") -> Ca
         if code in RULES or any(r.name == name for r in RULES.values()):
             raise ValueError(f"duplicate rule {code} {name}")
         if code in CODES or name in NAMES:
-            # one catalogue (descgen/codes/__init__.py): a rule may not reuse a loader/reader code
-            raise ValueError(f"rule {code} {name} duplicates a catalogue code")
+            # one catalogue (descgen/codes/): a rule may not reuse a loader/reader code, nor a retired one
+            old = CODES.get(code)
+            retired = f" ({old.code} is {status_note(old.status)})" if old is not None and old.status else ""
+            raise ValueError(f"rule {code} {name} duplicates a catalogue code{retired}")
         doc = inspect.cleandoc(fn.__doc__ or "")
         missing = [h for h in _HEADINGS if h not in doc]
         if missing:

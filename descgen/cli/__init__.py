@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING, NoReturn
 
 from descgen import __version__
 from descgen.cli import arguments as types
+from descgen.codes.importer import IMP007
+from descgen.codes.read import CTRL055
 from descgen.commands import text as cli_format
 from descgen.core.findings import Finding, InputError, Where, summary
 from descgen.infra import collector
@@ -184,9 +186,7 @@ def _description_options(args: argparse.Namespace) -> Options:
         # that changes nothing would let a user believe a $(var) was checked
         raise InputError(
             [
-                Finding(
-                    "CTRL055",
-                    "error",
+                CTRL055.finding(
                     "--launch-arg is given without --controllers; launch arguments are used only for the "
                     "$(var NAME) substitutions of the controllers YAML named by --controllers",
                     "add --controllers FILE, or drop --launch-arg",
@@ -250,9 +250,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
     if out is not None and out.exists() and not args.force:
         raise InputError(
             [
-                Finding(
-                    "IMP007",
-                    "error",
+                IMP007.finding(
                     f"{out} exists; import does not overwrite a spec",
                     "choose another -o file, or pass --force to replace it",
                     "option",
@@ -413,12 +411,14 @@ def _cmd_rules(args: argparse.Namespace) -> int:
     if args.code:
         entry = explain(args.code)
         assert entry is not None  # cli_types.rule_code refused unknown codes
-        print(f"{entry.code} {entry.name} ({entry.severity}; {GROUPS[entry.group]})\n{entry.doc}", end="")
+        status = f"; {entry.note}" if entry.note else ""  # a retired or redirected code says so
+        print(f"{entry.code} {entry.name} ({entry.severity}; {GROUPS[entry.group]}{status})\n{entry.doc}", end="")
         return EXIT_OK
-    for e in entries():
+    for e in entries():  # sorted by code
         if args.group and e.group != args.group:
             continue
-        print(f"{e.code}  {e.severity:<7}  {e.group:<9}  {e.name}: {e.summary}")
+        status = f"[{e.status}] " if e.status != "stable" else ""
+        print(f"{e.code}  {e.severity:<7}  {e.group:<9}  {e.name}: {status}{e.summary}")
     return EXIT_OK
 
 

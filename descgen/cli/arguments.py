@@ -14,8 +14,14 @@ import argparse
 from collections.abc import Callable
 from pathlib import Path
 
+from descgen.codes import Code, raisable
+from descgen.codes.command import IMP008, RULE001
+from descgen.codes.control import CTRL032
+from descgen.codes.generate import GEN010
+from descgen.codes.importer import IMP027
+from descgen.codes.read import CTRL054, READ005
 from descgen.core import units
-from descgen.core.findings import Finding, Where
+from descgen.core.findings import Where
 
 COMMAND_LINE = Where("<command line>")
 
@@ -23,9 +29,9 @@ COMMAND_LINE = Where("<command line>")
 class OptionError(argparse.ArgumentTypeError):
     """A bad option value with a finding code."""
 
-    def __init__(self, code: str, message: str, hint: str, where: Where = COMMAND_LINE) -> None:
+    def __init__(self, code: Code, message: str, hint: str, where: Where = COMMAND_LINE) -> None:
         super().__init__(message)
-        self.finding = Finding(code, "error", message, hint, "option", where)
+        self.finding = code.finding(message, hint, "option", where)
 
 
 Bounds = Callable[[], tuple[float, float]]  # (low, high) in seconds, looked up when a value is given
@@ -46,7 +52,7 @@ class Duration:
         try:
             return units.duration(text, low, high, bare_seconds=self.bare_seconds)
         except units.QuantityError as exc:
-            raise OptionError(exc.code, f"{self.option}: {exc.message}", exc.hint) from None
+            raise OptionError(raisable(exc.code), f"{self.option}: {exc.message}", exc.hint) from None
 
 
 class Nanoseconds(Duration):
@@ -64,7 +70,7 @@ def xacro_arg(text: str) -> tuple[str, str]:
     name, sep, value = text.partition(":=")
     if not sep or not name:
         raise OptionError(
-            "READ005", f"--xacro-arg '{text}' is not name:=value", "write e.g. --xacro-arg use_gripper:=true"
+            READ005, f"--xacro-arg '{text}' is not name:=value", "write e.g. --xacro-arg use_gripper:=true"
         )
     return name, value
 
@@ -77,9 +83,9 @@ def launch_arg(text: str) -> tuple[str, str]:
     name, sep, value = text.partition(":=")
     hint = "write e.g. --launch-arg joint_prefix:=joint (one line, no control characters)"
     if not sep or not name:
-        raise OptionError("CTRL054", f"--launch-arg {text!a} is not name:=value", hint)
+        raise OptionError(CTRL054, f"--launch-arg {text!a} is not name:=value", hint)
     if (problem := check_value(name, value)) is not None:
-        raise OptionError("CTRL054", f"--launch-arg: {problem}", hint)
+        raise OptionError(CTRL054, f"--launch-arg: {problem}", hint)
     return name, value
 
 
@@ -89,12 +95,12 @@ def variant(text: str) -> tuple[str, tuple[tuple[str, str], ...]]:
     name, sep, rest = text.partition(":")
     hint = "write e.g. --variant mock:use_mock_hardware:=true or --variant real: (no arguments)"
     if not sep or name not in ("mock", "gazebo", "real"):
-        raise OptionError("IMP027", f"--variant '{text}' is not mock|gazebo|real:[ARG:=VALUE,...]", hint)
+        raise OptionError(IMP027, f"--variant '{text}' is not mock|gazebo|real:[ARG:=VALUE,...]", hint)
     args = []
     for item in rest.split(",") if rest else []:
         arg, sep, value = item.partition(":=")
         if not sep or not arg:
-            raise OptionError("IMP027", f"--variant '{text}': '{item}' is not name:=value", hint)
+            raise OptionError(IMP027, f"--variant '{text}': '{item}' is not name:=value", hint)
         args.append((arg, value))
     return name, tuple(args)
 
@@ -107,11 +113,11 @@ def plant_fault(text: str) -> tuple[str, str]:
     joint, sep, kind = text.partition(":=")
     if not sep or not joint:
         raise OptionError(
-            "CTRL032", f"--plant-fault {text!a} is not JOINT:=KIND", "write e.g. --plant-fault elbow_joint:=stuck"
+            CTRL032, f"--plant-fault {text!a} is not JOINT:=KIND", "write e.g. --plant-fault elbow_joint:=stuck"
         )
     if kind not in FAULT_KINDS:
         raise OptionError(
-            "CTRL032", f"--plant-fault {text!a}: unknown fault kind {kind!a}", f"use one of {', '.join(FAULT_KINDS)}"
+            CTRL032, f"--plant-fault {text!a}: unknown fault kind {kind!a}", f"use one of {', '.join(FAULT_KINDS)}"
         )
     return joint, kind
 
@@ -129,7 +135,7 @@ def templates_folder(text: str) -> Path:
     folder = Path(text)
     if not folder.is_dir():
         raise OptionError(
-            "GEN010", f"--templates {folder} is not a folder", "name a folder of template overrides", Where(str(folder))
+            GEN010, f"--templates {folder} is not a folder", "name a folder of template overrides", Where(str(folder))
         )
     return folder
 
@@ -152,7 +158,7 @@ def rule_code(text: str) -> str:
     code = text.strip().upper()
     if explain(code) is None:
         raise OptionError(
-            "RULE001", f"no code {report.printable(text, 80)} in the catalogue", "run descgen rules for the list"
+            RULE001, f"no code {report.printable(text, 80)} in the catalogue", "run descgen rules for the list"
         )
     return code
 
@@ -164,7 +170,7 @@ def import_units(text: str) -> object:
     try:
         return Units.parse(text)
     except ValueError as exc:
-        raise OptionError("IMP008", f"--units: {exc}", "write e.g. --units mm,deg,kg or --units si") from None
+        raise OptionError(IMP008, f"--units: {exc}", "write e.g. --units mm,deg,kg or --units si") from None
 
 
 MAX_JOBS = 64  # descgen.commands.tf.bagaudit.MAX_JOBS, not imported: parsing must not import rosbags' users

@@ -10,8 +10,11 @@ Building the page runs the tf scenario, the fault catalogue and validation again
 second), so its last line records the hash of everything it was built from and of its own
 comparable text (descgen/infra/evidence_hash.py). ``check`` takes a page whose record matches as
 current without building it; any other page is built and compared as before. The record
-line itself is not compared: a page that reads the same is not stale because descgen's code
-changed, it is only built again until ``descgen report`` records the new inputs.
+line itself is not compared: a page that reads the same is not stale because an input of its
+key changed, it is only built again until ``descgen report`` records the new inputs. descgen's
+part in the key is :data:`FORMAT` and its release (descgen/infra/keys.py EVIDENCE), not the bytes
+of its source: an edit that changes no page leaves it current, and one that does is caught by
+tests/test_evidence_recompute.py (the page built again and compared) until FORMAT is bumped.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from typing import Any
 from descgen.commands import text as cli_format
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.record import record
-from descgen.infra import evidence_hash
+from descgen.infra import evidence_hash, keys
 from descgen.output import report
 from descgen.write import pose_images
 
@@ -39,6 +42,9 @@ _NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg")
 # the libraries whose behaviour the page prints: xacro and lxml (proofs), pint and pydantic
 # (validation), rosbags (the tf scenario's recording), numpy, PyYAML, Jinja2 (rendering), trimesh
 _TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Jinja2", "trimesh")
+# descgen's part in the page's key: bump when what the page says of the same inputs changes
+# (a section, a sentence, a proof it runs); tests/test_evidence_recompute.py fails until then
+FORMAT = 1
 TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
 
 
@@ -412,9 +418,10 @@ def input_key(
     check_out: tuple[str, str],
     n: int,
 ) -> str:
-    """The hash of everything the page's comparable text is a function of: the spec's bytes,
-    the rendered files and meshes, what the page reads from the package, what check printed
-    (paths as the project sees them), descgen's code and the libraries it prints the work of."""
+    """The key (descgen/infra/keys.py) of everything the page's comparable text is a function
+    of: the spec's bytes, the rendered files and meshes, what the page reads from the package,
+    what check printed (paths as the project sees them), with :data:`FORMAT`, descgen's release
+    and the versions of the libraries it prints the work of."""
     import shutil
 
     check_urdf = shutil.which("check_urdf")
@@ -422,21 +429,17 @@ def input_key(
     if check_urdf is not None:  # its identity as frames_svg names dot's: no process started
         st = Path(check_urdf).resolve().stat()
         urdfdom = [str(Path(check_urdf).resolve()), st.st_size, st.st_mtime_ns]
-    return evidence_hash.digest(
-        {
-            "what": PAGE,
-            **evidence_hash.descgen_identity(),
-            "tools": evidence_hash.versions(*_TOOLS),
-            "check_urdf": urdfdom,
-            "spec": evidence_hash.sha256(spec.read_bytes()),
-            "shown": shown,
-            "files": {rel: evidence_hash.sha256(text) for rel, text in files.items()},
-            "meshes": {rel: evidence_hash.sha256(data) for rel, data in meshes.items()},
-            "package": evidence_hash.package_files(package, _NOT_READ),
-            "check_out": [_relative(text, package) for text in check_out],
-            "n": n,
-        }
-    )
+    inputs = {
+        "check_urdf": urdfdom,
+        "spec": evidence_hash.sha256(spec.read_bytes()),
+        "shown": shown,
+        "files": {rel: evidence_hash.sha256(text) for rel, text in files.items()},
+        "meshes": {rel: evidence_hash.sha256(data) for rel, data in meshes.items()},
+        "package": evidence_hash.package_files(package, _NOT_READ),
+        "check_out": [_relative(text, package) for text in check_out],
+        "n": n,
+    }
+    return keys.key(PAGE, FORMAT, inputs, _TOOLS, keys.EVIDENCE)
 
 
 def current(package: Path, key: str) -> bool:

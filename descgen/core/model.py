@@ -419,11 +419,12 @@ class CollisionMatrix:
     """The computed matrix (descgen/physics/collision.py): what generate writes into the SRDF."""
 
     settings: MatrixSettings
-    input_hash: str  # sha256 of geometry, joints and settings: the cache key
+    input_hash: str  # the key (descgen/infra/keys.py) of geometry, joints, settings and libraries
     pairs: tuple[DisabledPair, ...]  # Adjacent, Default, Always, Never; sorted
     skipped: tuple[str, ...]  # links without collision geometry
     checked: int  # link pairs with geometry on both sides
     state: str  # the group state the Default test used ("" = all joints at zero)
+    libraries: tuple[tuple[str, str], ...] = ()  # (distribution, version) that computed the pairs
 
 
 @record

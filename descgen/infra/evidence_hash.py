@@ -3,15 +3,19 @@
 Some evidence is slow to compute and cheap to verify: the self-collision matrix, the sweep,
 the control run, the evidence page. Each records, beside its result, two hashes:
 
-- ``input-sha256``: everything the result is a function of (the spec, the generated files,
-  descgen's version and a hash of descgen's own source files, the versions of the tools used),
-  so a change in any of them makes ``check`` compute again exactly as without the record;
+- ``input-sha256``: the key (descgen/infra/keys.py) of everything the result is a function of:
+  the spec, the generated files, the versions of the libraries used, and descgen's part in it,
+  named by the computation's format version and descgen's release (not by the bytes of its
+  source: a comment or a refactoring leaves evidence current), so a change in any of them makes
+  ``check`` compute again exactly as without the record;
 - ``content-sha256``: the result itself as written, so a result edited by hand with the old
   input hash kept is not taken on trust (``check`` computes again and reports the file).
 
-Only when both match does ``check`` take the committed result without computing it.
-This module sits below its users (generate, the control evidence, the evidence page) and
-imports nothing heavy.
+Only when both match does ``check`` take the committed result without computing it, and never
+with ``DESCGEN_RECOMPUTE=1`` (:func:`recompute`): then every piece of evidence is computed again
+and compared with the committed files, which is how tests/test_evidence_recompute.py catches a
+behaviour change whose format version was not bumped. This module also holds the hashing
+primitives the keys are made of. It sits below its users and imports nothing heavy.
 """
 
 from __future__ import annotations
@@ -19,8 +23,8 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
+import os
 import re
-import sys
 from pathlib import Path
 
 STAMP = re.compile(r"descgen input-sha256=([0-9a-f]{64}) content-sha256=([0-9a-f]{64})")
@@ -38,12 +42,13 @@ def digest(value: object) -> str:
 @functools.cache
 def source_digest() -> str:
     """descgen's own code: every file of the installed package (modules, templates, data),
-    by path and bytes. Any edit to descgen, not only to the module that computes a result,
-    counts: a result depends on the loader, the renderers and the checks too, and telling
-    which files matter would be a guess that could go stale."""
-    import os
+    by path and bytes: the identity of the local caches (descgen/infra/keys.py ``LOCAL``). Any
+    edit to descgen, not only to the module that computes a result, counts: a cached result
+    depends on the loader, the renderers and the checks too, and a local cache can afford to
+    compute again. Committed evidence is named by format versions instead (keys.py)."""
+    import descgen
 
-    root = os.path.dirname(os.path.realpath(__file__))
+    root = os.path.dirname(os.path.realpath(descgen.__file__))  # the package, not this folder
     found: list[tuple[list[str], str]] = []
     # os.walk, not Path.rglob: a third of the time, and __pycache__ folders are not walked at all
     for folder, dirs, names in os.walk(root):
@@ -91,16 +96,6 @@ def version(name: str) -> str:
         if line[:8].lower() == "version:":
             return line[8:].strip()
     return str(dist.version)
-
-
-def descgen_identity() -> dict[str, object]:
-    """What every input hash holds about descgen itself and the interpreter it runs on. The
-    interpreter by its minor version: committed evidence made with Python 3.11.7 is reused by a
-    checkout on Debian 12's 3.11.2 (a patch release changes no result descgen computes; the
-    libraries that compute results are named by their own versions)."""
-    from descgen import __version__
-
-    return {"descgen": __version__, "source": source_digest(), "python": sys.version_info[:2]}
 
 
 def package_files(package: Path, skip: tuple[str, ...] = ()) -> dict[str, str]:
@@ -172,5 +167,17 @@ def recorded(text: str) -> tuple[str, str] | None:
 
 
 def reusable(record: tuple[str, str] | None, key: str, content: str) -> bool:
-    """True when ``record`` holds this input hash and ``content`` is what was written."""
-    return record is not None and record[0] == key and record[1] == sha256(content)
+    """True when ``record`` holds this input hash and ``content`` is what was written (never
+    while :func:`recompute`)."""
+    return record is not None and record[0] == key and record[1] == sha256(content) and not recompute()
+
+
+RECOMPUTE_ENV = "DESCGEN_RECOMPUTE"
+
+
+def recompute() -> bool:
+    """True when ``DESCGEN_RECOMPUTE`` is set to anything but "" or "0": committed evidence is
+    then never reused (the collision matrix is sampled, the sweep, the control run and the
+    evidence page are computed again) and ``check`` compares what it computed with the
+    committed files. Read each time: a test may set it."""
+    return os.environ.get(RECOMPUTE_ENV, "") not in ("", "0")

@@ -6,9 +6,12 @@ same result as last time. Each is a pure function of what its key holds:
 
 - the inputs themselves, by content (the files an expansion reads, the arguments, the
   environment variables the sandbox lets through; the model values the sweep reads);
-- descgen's identity (:func:`descgen.infra.evidence_hash.descgen_identity`: version, a hash of
-  every source file, the Python version), so any edit to descgen computes again;
+- descgen's identity as a local cache takes it (descgen/infra/keys.py ``LOCAL``: the release, a
+  hash of every source file, the Python version to its patch release), so any edit to descgen
+  computes again;
 - the versions of the libraries that compute it (xacro, catkin_pkg, numpy, ...).
+
+The key is :func:`descgen.infra.keys.key`'s, as every cache's and every evidence record's.
 
 A changed input is a different key, so nothing stale is ever served: the result is computed
 exactly as without the cache. A proof that reads a cached tool output still does its own
@@ -29,13 +32,12 @@ import contextlib
 import json
 import os
 import re
-import sys
 import time
 from pathlib import Path
 from typing import Any
 
 from descgen.core.cache_dir import cache_root, read_at_most, write_atomic
-from descgen.infra import evidence_hash
+from descgen.infra import keys
 
 SCHEMA = 1  # bump when an entry's layout changes
 MAX_ENTRY_BYTES = 64 * 1024 * 1024  # a 1000-link expansion is a few MB
@@ -46,19 +48,10 @@ _KEY = re.compile(r"[0-9a-f]{64}")
 _KIND = re.compile(r"[a-z][a-z0-9-]{0,40}")
 
 
-def key(kind: str, inputs: object, tools: tuple[str, ...] = ()) -> str:
-    """The hash of ``inputs`` (JSON-able), descgen's identity and the ``tools``' versions."""
-    return evidence_hash.digest(
-        {
-            "schema": SCHEMA,
-            "kind": kind,
-            **evidence_hash.descgen_identity(),
-            # a local cache can afford to be strict: the interpreter to its patch release
-            "python-patch": sys.version_info[:3],
-            "tools": evidence_hash.versions(*tools),
-            "inputs": inputs,
-        }
-    )
+def key(kind: str, inputs: object, tools: tuple[str, ...] = (), version: int = 1) -> str:
+    """The key (descgen/infra/keys.py) of computing ``kind`` (its ``version``) from ``inputs``
+    (JSON-able): with descgen's whole source and the ``tools``' versions, as a local cache is."""
+    return keys.key(kind, version, inputs, tools, keys.LOCAL)
 
 
 def _folder(kind: str) -> Path | None:

@@ -14,7 +14,9 @@ import os
 import stat
 from pathlib import Path
 
-from descgen.core.findings import Finding, InputError, Where
+from descgen.codes import Code
+from descgen.codes.read import READ001, READ040, READ041, READ044
+from descgen.core.findings import InputError, Where
 from descgen.core.record import record
 
 MIB = 1024 * 1024
@@ -26,9 +28,9 @@ _CHUNK = 1 * MIB
 class Codes:
     """The finding codes a reader reports; the spec loader keeps its YAML codes."""
 
-    unreadable: str = "READ001"
-    not_regular: str = "READ040"
-    too_large: str = "READ041"
+    unreadable: Code = READ001
+    not_regular: Code = READ040
+    too_large: Code = READ041
 
 
 READ_CODES = Codes()
@@ -48,8 +50,8 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def _error(code: str, message: str, hint: str, shown: str) -> InputError:
-    return InputError([Finding(code, "error", message, hint, "file", Where(shown))])
+def _error(code: Code, message: str, hint: str, shown: str) -> InputError:
+    return InputError([code.finding(message, hint, "file", Where(shown))])
 
 
 def _unreadable(exc: OSError | ValueError, codes: Codes, shown: str) -> InputError:
@@ -177,7 +179,7 @@ def inside(path: Path, folder: Path) -> bool:
         return False
 
 
-def refuse_outside(path: Path, folder: Path, what: str, *, code: str, display: str | None = None) -> None:
+def refuse_outside(path: Path, folder: Path, what: str, *, code: Code, display: str | None = None) -> None:
     """InputError ``code`` when ``path`` (links resolved) leaves ``folder``: a file of a folder
     the user named is read only when it is really in that folder (docs/security.md)."""
     if inside(path, folder):
@@ -197,7 +199,7 @@ def read_in_folder(
     what: str,
     limit: int = MAX_DESCRIPTION_BYTES,
     *,
-    code: str = "READ044",
+    code: Code = READ044,
     display: str | None = None,
     codes: Codes = READ_CODES,
 ) -> bytes:

@@ -16,7 +16,9 @@ from typing import Any
 
 import yaml
 
-from descgen.core.findings import Finding, InputError, Where
+from descgen.codes import Code
+from descgen.codes.spec import SPEC005, YAML001, YAML002, YAML003, YAML004, YAML010
+from descgen.core.findings import InputError, Where
 from descgen.core.record import record
 from descgen.infra.safeio import Codes, read_bounded
 
@@ -56,7 +58,7 @@ DEPTH_HINT = (
 Path_ = tuple[str | int, ...]
 
 # YAML002 cannot read, YAML010 not a regular file (FIFO, device, folder), YAML003 too large
-SPEC_CODES = Codes(unreadable="YAML002", not_regular="YAML010", too_large="YAML003")
+SPEC_CODES = Codes(unreadable=YAML002, not_regular=YAML010, too_large=YAML003)
 
 # libyaml's composer when PyYAML was built with it (marks are the same), else pure Python
 _BASE: type[yaml.SafeLoader] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
@@ -141,8 +143,8 @@ class Document:
             key = False
 
 
-def _fail(file: str, message: str, hint: str, line: int = 0, col: int = 0, code: str = "YAML001") -> InputError:
-    return InputError([Finding(code, "error", message, hint, "file", Where(file, line, col))])
+def _fail(file: str, message: str, hint: str, line: int = 0, col: int = 0, code: Code = YAML001) -> InputError:
+    return InputError([code.finding(message, hint, "file", Where(file, line, col))])
 
 
 def read_text(path: Path, display: str, what: str = "spec") -> str:
@@ -151,13 +153,11 @@ def read_text(path: Path, display: str, what: str = "spec") -> str:
     /dev/zero must not hang the loader)."""
     raw = read_bounded(path, what, MAX_BYTES, display=display, codes=SPEC_CODES)
     if b"\0" in raw:
-        raise _fail(display, "binary file (contains NUL bytes), not YAML", f"name a .yaml {what}", code="YAML003")
+        raise _fail(display, "binary file (contains NUL bytes), not YAML", f"name a .yaml {what}", code=YAML003)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise _fail(
-            display, f"not UTF-8 text (byte {exc.start})", f"save the {what} as UTF-8", code="YAML003"
-        ) from None
+        raise _fail(display, f"not UTF-8 text (byte {exc.start})", f"save the {what} as UTF-8", code=YAML003) from None
 
 
 def load(path: Path, display: str | None = None, what: str = "spec") -> Document:
@@ -166,38 +166,38 @@ def load(path: Path, display: str | None = None, what: str = "spec") -> Document
     return loads(text, display)
 
 
-def loads(text: str, file: str = "<string>") -> Document:
-    try:
-        node = yaml.compose(text, Loader=_LOADER)
-    except yaml.MarkedYAMLError as exc:
+def refusal(exc: yaml.YAMLError | RecursionError, text: str, file: str) -> InputError:
+    """The error PyYAML raised for ``text`` as descgen reports it: where, and what to do (YAML001);
+    every YAML reader of descgen (specs, parameter files) says it the same way."""
+    if isinstance(exc, RecursionError):
+        return _fail(file, "YAML nested too deeply", DEPTH_HINT)
+    if isinstance(exc, yaml.MarkedYAMLError):
         mark = exc.problem_mark or exc.context_mark
         line, col = (mark.line + 1, mark.column + 1) if mark else (0, 0)
         what = " ".join((exc.problem or "malformed YAML").split())  # one line per finding
         if "nesting depth" in what:  # libyaml's own bound (PyYAML 6.0.4 on): the same refusal as ours
-            raise _fail(file, "YAML nested too deeply", DEPTH_HINT, line, col) from None
-        raise _fail(file, f"malformed YAML: {what}", "fix the YAML syntax at this position", line, col) from None
-    except yaml.reader.ReaderError as exc:
+            return _fail(file, "YAML nested too deeply", DEPTH_HINT, line, col)
+        return _fail(file, f"malformed YAML: {what}", "fix the YAML syntax at this position", line, col)
+    if isinstance(exc, yaml.reader.ReaderError):
         line, col = _line_col(text, exc.position)
         char = exc.character if isinstance(exc.character, int) else ord(exc.character or "\0")
-        raise _fail(
+        return _fail(
             file,
             f"malformed YAML: unacceptable character #x{char:04x}: {exc.reason}",
             "remove the character, or write it as an escape (\\x1b) inside a double-quoted string",
             line,
             col,
-        ) from None
-    except yaml.YAMLError as exc:
-        raise _fail(file, f"malformed YAML: {' '.join(str(exc).split())}", "fix the YAML syntax") from None
-    except RecursionError:
-        raise _fail(
-            file,
-            "YAML nested too deeply",
-            DEPTH_HINT,
-        ) from None
-    if node is None:
-        raise _fail(
-            file, "the file is empty", "write a robot spec (see specs/warehouse_arm.yaml)", 1, 1, code="YAML004"
         )
+    return _fail(file, f"malformed YAML: {' '.join(str(exc).split())}", "fix the YAML syntax")
+
+
+def loads(text: str, file: str = "<string>") -> Document:
+    try:
+        node = yaml.compose(text, Loader=_LOADER)
+    except (yaml.YAMLError, RecursionError) as exc:
+        raise refusal(exc, text, file) from None
+    if node is None:
+        raise _fail(file, "the file is empty", "write a robot spec (see specs/warehouse_arm.yaml)", 1, 1, code=YAML004)
     builder = _Builder(file)
     data = builder.build(node, (), 0)
     return Document(file, data, builder.key_marks, builder.value_marks, text)
@@ -239,7 +239,7 @@ class _Builder:
                 nodes_hint(),
                 node.start_mark.line + 1,
                 node.start_mark.column + 1,
-                code="YAML003",
+                code=YAML003,
             )
         if depth > MAX_DEPTH:
             raise _fail(
@@ -265,7 +265,7 @@ class _Builder:
                     repeated_hint(),
                     node.start_mark.line + 1,
                     node.start_mark.column + 1,
-                    code="YAML003",
+                    code=YAML003,
                 )
             alias = self.aliasing = True  # the aliases inside it are counted in its size
         if isinstance(node, yaml.MappingNode):
@@ -314,7 +314,7 @@ class _Builder:
                     f"duplicate key '{key}' (first at line {first[0]})",
                     "remove one of them; YAML would silently keep the last",
                     *mark,
-                    code="SPEC005",
+                    code=SPEC005,
                 )
             key_marks[kpath] = mark
             if inline and type(value_node) is _SCALAR and value_node.tag == _STR and self.count < MAX_NODES:

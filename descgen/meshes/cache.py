@@ -3,8 +3,9 @@
 One small JSON file per mesh content, in the user cache folder descgen already uses for pint
 (``DESCGEN_CACHE_DIR``, default ``~/.cache/descgen``; ``DESCGEN_CACHE_DIR=`` switches it off,
 as the test suite does). The key is the sha256 of the mesh's bytes (and its format); the
-folder is named by a schema version and the versions of trimesh and pycollada, which decide
-what a parse gives, so an upgrade starts a fresh folder.
+folder is named by a key (descgen/infra/keys.py) of the schema version and the versions of
+trimesh, pycollada and numpy, which decide what a parse gives, so an upgrade starts a fresh
+folder.
 
 An entry is data, never code (docs/security.md): JSON read with a size bound, every field
 checked for type, range and finiteness, and the key inside it must equal its file name. Any
@@ -12,35 +13,32 @@ entry that fails is ignored and the mesh is measured again; writes go to a tempo
 renamed into place, so a reader never sees half an entry. Nothing here raises: a cache that
 cannot be read or written is a cache miss.
 
-In front of the hashes sits a stat index, as git's index sits in front of its object hashes:
-one file (``stat-index``) mapping a mesh's path and stat data (size, mtime, inode, ctime, all
-in nanoseconds where the OS has them) to the content key last computed for it and a copy of
-that key's entry, so a warm run stats a mesh instead of reading and hashing its bytes (sha256
-of the corpus's 350 MB is ~0.3 s) and reads one file, not one entry per mesh (~620 opens and
-JSON parses for the corpus). The copy is checked exactly as an entry file is; one that fails
-leaves the key, and the entry file is read instead. A file whose stat data differs in any
-field is read and hashed again; one changed less than :data:`RACY_NS` before it was hashed
-is never indexed ("racily clean" in git's words: a rewrite within the file system's
-time-stamp granularity could keep every field).
-The index is validated on read like the entries (bounded, typed; a bad entry is skipped, a
-bad file ignored whole).
+In front of the hashes sits a stat index (descgen/infra/stat_index.py, the one implementation
+of the stat shortcut, shared with the findings cache), as git's index sits in front of its
+object hashes: one file (``stat-index``) mapping a mesh's path and stat data (size, mtime,
+inode, ctime, all in nanoseconds where the OS has them) to the content key last computed for
+it and a copy of that key's entry, so a warm run stats a mesh instead of reading and hashing
+its bytes (sha256 of the corpus's 350 MB is ~0.3 s) and reads one file, not one entry per mesh
+(~620 opens and JSON parses for the corpus). The copy is checked exactly as an entry file is;
+one that fails leaves the key, and the entry file is read instead. A file whose stat data
+differs in any field is read and hashed again; one changed less than ``stat_index.RACY_NS``
+before it was hashed is never indexed ("racily clean").
 """
 
 from __future__ import annotations
 
-import atexit
 import functools
 import json
 import math
 import os
 import re
-import threading
 from pathlib import Path
 from typing import Any
 
-from descgen.core.cache_dir import CACHE_ENV, cache_root, read_at_most, write_atomic
-from descgen.infra.dist_version import installed_version
+from descgen.core.cache_dir import CACHE_ENV, cache_root, write_atomic
+from descgen.infra import keys, stat_index
 from descgen.infra.safeio import MIB
+from descgen.infra.stat_index import Stat
 from descgen.meshes.facts import MAX_TRIANGLES, MeshFacts
 
 SCHEMA = 1  # bump when MeshFacts or how it is measured changes
@@ -50,27 +48,15 @@ _KINDS = ("stl", "obj", "dae")
 INDEX = "stat-index"  # beside the entries' subfolders; not *.json: it is no facts entry
 MAX_INDEX_BYTES = 32 * MIB  # ~150 bytes per mesh: 200,000 meshes
 MAX_INDEX_ENTRIES = 200_000
-MAX_PATH_CHARS = 4096  # PATH_MAX on Linux
-RACY_NS = 2_000_000_000  # a file changed this recently when hashed is not indexed (FAT stamps are 2 s)
-_INT64 = 1 << 63
-
-
-def _version(dist: str) -> str:
-    found = installed_version(dist)
-    if found is not None:
-        return found
-    from importlib import metadata  # ~30 ms of imports (email, zipfile, ...): only when the scan fails
-
-    try:
-        return metadata.version(dist)
-    except metadata.PackageNotFoundError:
-        return "none"
+# what measures a mesh: trimesh (with pycollada for .dae) and numpy (binary STLs, meshes/load.py)
+LIBRARIES = ("trimesh", "pycollada", "numpy")
+_INDEX = stat_index.StatIndex(INDEX, SCHEMA, MAX_INDEX_BYTES, MAX_INDEX_ENTRIES)
 
 
 @functools.cache
 def _folder_name() -> str:
-    # importlib.metadata reads the installed versions without importing trimesh (~0.5 s)
-    return f"meshes-v{SCHEMA}-trimesh{_version('trimesh')}-pycollada{_version('pycollada')}"
+    # the versions are read from the installed metadata, without importing trimesh (~0.5 s)
+    return "meshes-" + keys.key("mesh facts", SCHEMA, None, LIBRARIES, keys.NOTHING)[:16]
 
 
 _FOLDERS: dict[str | None, Path | None] = {}  # DESCGEN_CACHE_DIR's value -> folder (asked per mesh)
@@ -206,23 +192,7 @@ def _facts(doc: Any, key: str, kind: str) -> MeshFacts | None:
     )
 
 
-# -- the stat index: (path, size, mtime, inode, ctime) -> content key --------------------------------
-
-Stat = tuple[int, int, int, int]  # st_size, st_mtime_ns, st_ino, st_ctime_ns
-
-
-def stat_of(st: os.stat_result) -> Stat:
-    """The stat data the index compares: what changes whenever a file's bytes are rewritten."""
-    return (st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns)
-
-
-# path -> (stat, content key, the key's entry as written by put(), or None): the copy is
-# checked by _facts() when asked for, not when the index is read
-Row = tuple[Stat, str, Any]
-_INDEXES: dict[Path, dict[str, Row]] = {}  # cache folder -> its index, read once
-_ADDED: dict[Path, dict[str, Row]] = {}  # cache folder -> entries not yet written
-_INDEX_LOCK = threading.Lock()
-_AT_EXIT: list[bool] = []
+# -- the stat index: (path, size, mtime, inode, ctime) -> content key (descgen/infra/stat_index.py) ----
 
 
 def known_key(path: str, stat: Stat) -> str | None:
@@ -242,16 +212,9 @@ def known(path: str, stat: Stat, kind: str) -> tuple[str, MeshFacts | None] | No
     return entry[1], None if entry[2] is None else _facts(entry[2], entry[1], kind)
 
 
-def _row(path: str, stat: Stat) -> Row | None:
+def _row(path: str, stat: Stat) -> stat_index.Row | None:
     root = folder()
-    if root is None:
-        return None
-    with _INDEX_LOCK:
-        index = _INDEXES.get(root)
-        if index is None:
-            index = _INDEXES[root] = _read_index(root)
-        entry = index.get(path)
-    return entry if entry is not None and entry[0] == stat else None
+    return None if root is None else _INDEX.row(root, path, stat)
 
 
 def remember(
@@ -259,76 +222,21 @@ def remember(
 ) -> None:
     """Record that ``path`` with ``stat`` held content ``key`` (of ``kind``, measured as
     ``facts``), read at ``hashed_at_ns`` (``time.time_ns()`` before the read). A file changed
-    within :data:`RACY_NS` of then is left out: a second rewrite in the same time-stamp tick
-    would look unchanged."""
+    within ``stat_index.RACY_NS`` of then is left out: a second rewrite in the same time-stamp
+    tick would look unchanged."""
     root = folder()
-    if root is None or not _valid_entry(path, stat, key):
-        return
-    if max(stat[1], stat[3]) >= hashed_at_ns - RACY_NS:
+    if root is None:
         return
     doc = _doc(key, kind, facts) if facts is not None and _facts(_doc(key, kind, facts), key, kind) == facts else None
-    with _INDEX_LOCK:
-        _INDEXES.setdefault(root, {})[path] = (stat, key, doc)
-        _ADDED.setdefault(root, {})[path] = (stat, key, doc)
-        if not _AT_EXIT:  # a caller that never calls save_index() still keeps what it hashed
-            _AT_EXIT.append(True)
-            atexit.register(save_index)
+    _INDEX.remember(root, path, stat, key, hashed_at_ns, doc)
 
 
 def save_index() -> None:
     """Write the entries this process added, merged into the index on disk (another process
     may have added its own since it was read); atomic, and silent when unwritable."""
-    with _INDEX_LOCK:
-        pending = [(root, added) for root, added in _ADDED.items() if added]
-        _ADDED.clear()
-    for root, added in pending:
-        merged = _read_index(root)
-        merged.update(added)
-        if len(merged) > MAX_INDEX_ENTRIES:  # a cache folder shared by everything: start over
-            merged = dict(list(added.items())[-MAX_INDEX_ENTRIES:])
-        rows = [[p, *stat, key, doc] for p, (stat, key, doc) in merged.items()]
-        text = json.dumps({"schema": SCHEMA, "entries": rows}, allow_nan=False, separators=(",", ":"))
-        if len(text) <= MAX_INDEX_BYTES:
-            write_atomic(root / INDEX, text)
+    _INDEX.save()
 
 
 def forget() -> None:
     """Drop what this process holds in memory (the tests' fresh process)."""
-    with _INDEX_LOCK:
-        _INDEXES.clear()
-        _ADDED.clear()
-
-
-def _read_index(root: Path) -> dict[str, Row]:
-    """The index in ``root``: every entry that is exactly what save_index() writes; nothing
-    when the file is missing, too large, not JSON or not the expected shape."""
-    raw = read_at_most(root / INDEX, MAX_INDEX_BYTES)
-    if raw is None:
-        return {}
-    try:
-        doc = json.loads(raw, parse_constant=_no_constant)
-    except (ValueError, RecursionError):
-        return {}
-    if type(doc) is not dict or set(doc) != {"schema", "entries"} or doc["schema"] != SCHEMA:
-        return {}
-    rows = doc["entries"]
-    if type(rows) is not list or len(rows) > MAX_INDEX_ENTRIES:
-        return {}
-    out: dict[str, Row] = {}
-    for row in rows:
-        if type(row) is not list or len(row) != 7:
-            continue
-        path, size, mtime, ino, ctime, key, doc = row
-        stat = (size, mtime, ino, ctime)
-        if _valid_entry(path, stat, key):
-            out[path] = (stat, key, doc if type(doc) is dict else None)
-    return out
-
-
-def _valid_entry(path: Any, stat: Any, key: Any) -> bool:
-    if type(path) is not str or not 0 < len(path) <= MAX_PATH_CHARS or not path.startswith("/") or "\0" in path:
-        return False
-    if any(type(v) is not int for v in stat) or type(key) is not str or not _KEY.fullmatch(key):
-        return False
-    size, mtime, ino, ctime = stat
-    return bool(0 <= size < _INT64 and 0 <= ino < _INT64 and -_INT64 <= mtime < _INT64 and -_INT64 <= ctime < _INT64)
+    _INDEX.forget()

@@ -32,6 +32,7 @@ from descgen.core.findings import InputError
 from descgen.core.model import Collision, Link, Mesh, Robot, Visual
 from descgen.core.record import record
 from descgen.infra.safeio import MIB, read_bounded
+from descgen.infra.stat_index import stat_of
 from descgen.meshes.facts import MAX_TRIANGLES, MeshFacts
 
 if TYPE_CHECKING:  # numpy only where a mesh is parsed: a warm audit answers from the cache without it
@@ -119,7 +120,7 @@ def measure(path: Path | str) -> MeshFacts:
         return known
     if key is None and st is not None and stat.S_ISREG(st.st_mode) and st.st_size <= MAX_MESH_BYTES:
         # unchanged since a run hashed it (the stat index): its facts without reading its bytes
-        row = mesh_cache.known(str(path), mesh_cache.stat_of(st), kind)
+        row = mesh_cache.known(str(path), stat_of(st), kind)
         indexed, facts = row if row is not None else (None, None)
         if indexed is not None and facts is None:
             facts = _FACTS.get(indexed) or mesh_cache.get(indexed, kind)
@@ -140,7 +141,7 @@ def measure(path: Path | str) -> MeshFacts:
         facts = _measured(data, kind)
         mesh_cache.put(key, kind, facts)
     if st is not None:
-        mesh_cache.remember(str(path), mesh_cache.stat_of(st), key, hashed_at, kind, facts)
+        mesh_cache.remember(str(path), stat_of(st), key, hashed_at, kind, facts)
     with _LOCK:
         if seen is not None:
             _BY_STAT[seen] = key

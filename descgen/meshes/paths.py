@@ -26,6 +26,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from descgen.codes import Code
+from descgen.codes.spec import SPEC060, SPEC061, SPEC062, SPEC063, SPEC064, SPEC065
 from descgen.core.findings import Finding, Where
 from descgen.core.model import Collision, Link, Mesh, MeshState, Robot, Visual
 from descgen.core.record import record
@@ -359,7 +361,7 @@ def _refusal(name: str, r: Resolved, at: Where, have_paths: bool) -> Finding | N
         return None
     if r.state == "escapes":
         return _error(
-            "SPEC061",
+            SPEC061,
             f"mesh '{name}' points outside the spec's folder and the package paths",
             "keep meshes inside the spec's folder (no '..' past it, no absolute path or file://, no link out) "
             "or in a package named with package://",
@@ -372,20 +374,20 @@ def _refusal(name: str, r: Resolved, at: Where, have_paths: bool) -> Finding | N
             else "but the spec records no package_paths: and no --package-path was given"
         )
         return _error(
-            "SPEC062",
+            SPEC062,
             f"mesh '{name}' names package '{r.package}', which is {where_}",
             f"pass --package-path DIR, DIR being the folder that holds {r.package}/ (to validate, generate and "
             "check alike), or record that folder relative to the spec under package_paths:, or fix the package name",
             at,
         )
     if r.problem is not None:
-        return _error("SPEC063", f"mesh '{name}' {r.problem}", "name the mesh file itself", at)
-    return _error("SPEC060", f"mesh '{name}' does not exist", _HINT_FOLDER, at)
+        return _error(SPEC063, f"mesh '{name}' {r.problem}", "name the mesh file itself", at)
+    return _error(SPEC060, f"mesh '{name}' does not exist", _HINT_FOLDER, at)
 
 
 def _own_package(name: str, own: str, at: Where) -> Finding:
     return _error(
-        "SPEC062",
+        SPEC062,
         f"mesh '{name}' names the package descgen generates ({own}), which does not exist before it",
         "write the path relative to the spec (e.g. meshes/base.stl): generate copies it into the package; "
         f"or, if the mesh belongs to an existing package called {own}, give the generated package another "
@@ -396,7 +398,7 @@ def _own_package(name: str, own: str, at: Where) -> Finding:
 
 def _clash(name: str, other: str, dest: str, at: Where) -> Finding:
     return _error(
-        "SPEC065",
+        SPEC065,
         f"mesh '{name}' and mesh '{other}' are different files but would both be copied to {dest}",
         "move one of them, or rename it",
         at,
@@ -406,12 +408,12 @@ def _clash(name: str, other: str, dest: str, at: Where) -> Finding:
 def _folder_error(ypath: tuple[str | int, ...], written: str, why: str, where: Any) -> Finding:
     key = "templates" if ypath[0] == "templates" else "package_paths"
     return _error(
-        "SPEC064",
+        SPEC064,
         f"{key} entry '{written}' {why}",
         "name a folder relative to the spec, inside the project (the folder holding specs/)",
         where(ypath),
     )
 
 
-def _error(code: str, message: str, hint: str, at: Where) -> Finding:
-    return Finding(code, "error", message, hint, "spec", at)
+def _error(code: Code, message: str, hint: str, at: Where) -> Finding:
+    return code.finding(message, hint, "spec", at)

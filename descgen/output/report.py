@@ -67,7 +67,7 @@ _LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
 def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
     """SARIF 2.1.0 (what GitHub code scanning reads): one run, the rules that fired (their
-    catalogue entry, descgen/codes/__init__.py, as help), one result per finding."""
+    catalogue entry, descgen/codes/, as help), one result per finding."""
     from descgen import __version__
     from descgen.audit.catalogue import entries
 

@@ -23,12 +23,18 @@ with GEN070 rather than silently getting none.
 Cost: a pair seen both in and out of collision can be neither Always nor Never, so it is
 switched off as soon as that is certain; after a few hundred samples only the Never and
 Always candidates are still checked.
+
+The matrix is keyed (:func:`input_hash`, descgen/infra/keys.py) by the URDF, the meshes, the
+settings, :data:`ALGORITHM`, descgen's release and the versions of pinocchio, coal and numpy
+(the samples are numpy's), and the SRDF records the key with those versions. A committed
+matrix whose key matches is reused without sampling; on a machine without pinocchio or coal,
+where nothing could sample, the key is taken with the versions the SRDF records; on one with
+other versions the matrix is sampled again (once: the pairs are kept in the local result cache)
+and the committed record stands when the pairs are the same (:func:`compute`).
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 import re
 import tempfile
@@ -39,6 +45,8 @@ from typing import TYPE_CHECKING, Any
 
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.model import CollisionMatrix, DisabledPair, MatrixSettings, Robot
+from descgen.infra import keys
+from descgen.infra.evidence_hash import recompute, sha256
 from descgen.infra.progress import Step, counting
 from descgen.physics import mimic
 
@@ -46,7 +54,11 @@ if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses
     import numpy as np  # matrix and must not pay numpy's import (~60 ms) for it
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
+# (tests/test_evidence_recompute.py samples the committed example again and fails on a change)
 ALGORITHM = "descgen-collision-2"  # 2: mimic followers follow their leaders
+# what computes the pairs: pinocchio (its distribution is "pin") with coal, and numpy's PCG64 samples
+LIBRARIES = ("pin", "coal", "numpy")
+_SAMPLERS = ("pin", "coal")  # without either, nothing here can sample
 # What pinocchio is given (load_scene refuses more, GEN070; the sweep says SWEEP008): it keeps
 # ~40 KB per pair of collision shapes (requests, results), 1.25 GB for 250 one-shape links, and
 # its URDF parser recurses down the tree, a stack overflow (exit 139, no message) past ~3,500
@@ -54,7 +66,8 @@ ALGORITHM = "descgen-collision-2"  # 2: mimic followers follow their leaders
 MAX_SHAPE_PAIRS = 20_000  # ~0.8 GB: 200 collision shapes
 MAX_DEPTH = 1_000  # joints from the root to the deepest link
 COMPUTED_REASONS = ("Adjacent", "Default", "Always", "Never")
-_CACHE_LINE = re.compile(r"collision matrix input-sha256=([0-9a-f]{64})")
+_CACHE_LINE = re.compile(r"collision matrix input-sha256=([0-9a-f]{64})(?: computed with ([^>\n]*?))? -->")
+_LIBRARY = re.compile(r"([A-Za-z0-9][A-Za-z0-9._-]*) ([A-Za-z0-9][A-Za-z0-9.+!_-]*)")
 
 
 def geometry_links(robot: Robot) -> tuple[list[str], list[str]]:
@@ -89,18 +102,45 @@ def adjacent_pairs(robot: Robot) -> set[frozenset[str]]:
     return pairs
 
 
-def input_hash(robot: Robot, urdf: str, mesh_hashes: Mapping[str, str], settings: MatrixSettings) -> str:
-    """The cache key: the URDF (geometry and joints), the meshes' bytes, the settings and the
-    default state's values. The spec's other content (sources, descriptions) does not count."""
+def input_hash(
+    robot: Robot,
+    urdf: str,
+    mesh_hashes: Mapping[str, str],
+    settings: MatrixSettings,
+    libraries: Mapping[str, str] | None = None,
+) -> str:
+    """The cache key (descgen/infra/keys.py): the URDF (geometry and joints), the meshes' bytes,
+    the settings and the default state's values, with :data:`ALGORITHM`, descgen's release and
+    ``libraries`` (name -> version; the installed :data:`LIBRARIES` when None). The spec's
+    other content (sources, descriptions) does not count."""
     state = _state_values(robot, settings)[1]
-    key = {
-        "algorithm": ALGORITHM,
-        "urdf": hashlib.sha256(urdf.encode("utf-8")).hexdigest(),
+    inputs = {
+        "urdf": sha256(urdf),
         "meshes": dict(sorted(mesh_hashes.items())),
         "settings": [settings.default_state, settings.seed, settings.samples, settings.fraction, settings.padding],
         "state": sorted(state.items()),
     }
-    return hashlib.sha256(json.dumps(key, sort_keys=True).encode("utf-8")).hexdigest()
+    used = keys.libraries(LIBRARIES) if libraries is None else libraries
+    return keys.key("collision matrix", ALGORITHM, inputs, used, keys.RELEASE)
+
+
+def libraries_text(libraries: Mapping[str, str] | tuple[tuple[str, str], ...]) -> str:
+    """``pin 3.4.0, coal 3.0.1, numpy 2.1.0``: how the SRDF and the evidence name them."""
+    pairs = libraries.items() if isinstance(libraries, Mapping) else libraries
+    return ", ".join(f"{name} {version}" for name, version in pairs)
+
+
+def recorded(committed_srdf: str | None) -> tuple[str, dict[str, str] | None] | None:
+    """(key, libraries it was computed with) of the SRDF's record line; the libraries are None
+    when the line names none (an SRDF written before they were recorded) or not all of
+    :data:`LIBRARIES` as descgen writes them."""
+    found = _CACHE_LINE.search(committed_srdf) if committed_srdf is not None else None
+    if found is None:
+        return None
+    named = [_LIBRARY.fullmatch(part) for part in (found.group(2) or "").split(", ")]
+    libraries = {m.group(1): m.group(2) for m in named if m is not None}
+    whole = all(named) and list(libraries) == list(LIBRARIES)
+    return found.group(1), libraries if whole else None
 
 
 def _state_values(robot: Robot, settings: MatrixSettings) -> tuple[str, dict[str, float]]:
@@ -113,14 +153,38 @@ def _state_values(robot: Robot, settings: MatrixSettings) -> tuple[str, dict[str
 
 
 def cached(robot: Robot, committed_srdf: str | None, key: str) -> tuple[DisabledPair, ...] | None:
-    """The computed pairs of the committed SRDF when it records the same input hash."""
-    if committed_srdf is None:
+    """The computed pairs of the committed SRDF when it records the same input hash (never
+    with ``DESCGEN_RECOMPUTE=1``: descgen/infra/evidence_hash.py)."""
+    found = recorded(committed_srdf)
+    if committed_srdf is None or found is None or found[0] != key or recompute():
         return None
-    found = _CACHE_LINE.search(committed_srdf)
-    if found is None or found.group(1) != key:
-        return None
+    return _committed_pairs(committed_srdf)
+
+
+def _committed_pairs(committed_srdf: str) -> tuple[DisabledPair, ...]:
     pairs = re.findall(r'<disable_collisions link1="([^"]*)" link2="([^"]*)" reason="([^"]*)"/>', committed_srdf)
     return tuple(DisabledPair(a, b, r) for a, b, r in pairs if r in COMPUTED_REASONS)
+
+
+def installed() -> dict[str, str]:
+    """The installed versions of :data:`LIBRARIES` ("absent" for one not installed)."""
+    return keys.libraries(LIBRARIES)
+
+
+def reusable_here(libraries: Mapping[str, str]) -> bool:
+    """Whether a result computed with ``libraries`` may be taken without computing it here:
+    they are the installed ones, or pinocchio or coal is missing (nothing here could compute)."""
+    local = installed()
+    return dict(libraries) == local or any(local[n] == "absent" for n in _SAMPLERS)
+
+
+def _same(a: tuple[DisabledPair, ...], b: tuple[DisabledPair, ...]) -> bool:
+    """The same pairs with the same reasons, in whatever order."""
+
+    def pairs(ds: tuple[DisabledPair, ...]) -> set[tuple[frozenset[str], str]]:
+        return {(frozenset((d.link1, d.link2)), d.reason) for d in ds}
+
+    return pairs(a) == pairs(b)
 
 
 def compute(
@@ -134,15 +198,65 @@ def compute(
 ) -> CollisionMatrix:
     """The matrix for ``robot`` (its expanded ``urdf``; ``meshes``: package path -> bytes of
     the package's own meshes), or the committed one when nothing it depends on changed.
-    ``show_progress``: the samples drawn on a terminal (descgen/infra/progress.py)."""
-    key = input_hash(robot, urdf, {k: hashlib.sha256(v).hexdigest() for k, v in meshes.items()}, settings)
+    ``show_progress``: the samples drawn on a terminal (descgen/infra/progress.py).
+
+    The committed record stands when its key is the key of these inputs with the versions it
+    records, and either those are the installed versions (or nothing here can sample: it is
+    taken as it is) or sampling here with the installed ones gives the same pairs (it is
+    reproduced, and stays as committed: a machine with another numpy does not rewrite the
+    SRDF). Else the matrix is the one sampled here, keyed with the installed versions."""
+    mesh_hashes = {k: sha256(v) for k, v in meshes.items()}
+    local = installed()
+    key = input_hash(robot, urdf, mesh_hashes, settings, local)
     with_geometry, without = geometry_links(robot)
     checked = len(with_geometry) * (len(with_geometry) - 1) // 2
     state_name = _state_values(robot, settings)[0]
-    pairs = cached(robot, committed_srdf, key) or _SAMPLED.get(key)
+
+    def matrix(k: str, pairs: tuple[DisabledPair, ...], libraries: Mapping[str, str]) -> CollisionMatrix:
+        return CollisionMatrix(settings, k, pairs, tuple(without), checked, state_name, tuple(libraries.items()))
+
+    record = recorded(committed_srdf)
+    # the committed pairs, with the record's key and versions, when the record is of these inputs
+    committed: tuple[str, tuple[DisabledPair, ...], dict[str, str]] | None = None
+    versions = record[1] if record is not None else None
+    if committed_srdf is not None and record is not None and versions is not None:
+        same_inputs = input_hash(robot, urdf, mesh_hashes, settings, versions) == record[0]
+        committed = (record[0], _committed_pairs(committed_srdf), versions) if same_inputs else None
+    if committed is not None and not recompute() and reusable_here(committed[2]):
+        return matrix(*committed)
+    pairs = None if recompute() else _SAMPLED.get(key)
+    if pairs is None and not recompute():
+        pairs = _stored(key)
     if pairs is None:
         pairs = _SAMPLED[key] = _sample(robot, urdf, meshes, package, settings, show_progress)
-    return CollisionMatrix(settings, key, pairs, tuple(without), checked, state_name)
+        if not recompute():
+            _store(key, pairs)
+    if committed is not None and _same(pairs, committed[1]):
+        return matrix(committed[0], pairs, committed[2])  # reproduced with the installed versions
+    return matrix(key, pairs, local)
+
+
+_STORED = "collision-matrix"  # sampled pairs in the local result cache, by the key with the installed versions
+
+
+def _stored(key: str) -> tuple[DisabledPair, ...] | None:
+    """Pairs sampled here before (descgen/infra/result_cache.py; a machine whose versions differ
+    from the committed record's reproduces it once, not on every check)."""
+    from descgen.infra import result_cache
+
+    value = result_cache.get(_STORED, result_cache.key(_STORED, key, LIBRARIES))
+    if not isinstance(value, list) or not all(
+        isinstance(v, list) and len(v) == 3 and all(isinstance(x, str) for x in v) and v[2] in COMPUTED_REASONS
+        for v in value
+    ):
+        return None
+    return tuple(DisabledPair(a, b, r) for a, b, r in value)
+
+
+def _store(key: str, pairs: tuple[DisabledPair, ...]) -> None:
+    from descgen.infra import result_cache
+
+    result_cache.put(_STORED, result_cache.key(_STORED, key, LIBRARIES), [[d.link1, d.link2, d.reason] for d in pairs])
 
 
 # matrices sampled in this process, by input hash: generate followed by check (or a test that

@@ -1,6 +1,6 @@
 """Who publishes each transform of the running robot (derived from the model).
 
-Facts encoded (reference/robot_state_publisher.md, ros2_control.md, conventions.md):
+Facts encoded (docs/reference/robot_state_publisher.md, ros2_control.md, conventions.md):
 - robot_state_publisher sends fixed joints once on /tf_static; movable joints on /tf, only
   when a /joint_states message names them (stamped with that message's stamp). KDL turns
   ``planar`` joints into fixed ones (published frozen at zero) and ``floating`` joints are

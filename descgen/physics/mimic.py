@@ -1,7 +1,7 @@
 """Mimic joints: the one place that turns leader values into follower values.
 
 A URDF ``<mimic joint="L" multiplier="m" offset="o"/>`` on joint F means
-``q_F = m * q_L + o`` (reference/urdf.md). robot_state_publisher, MoveIt, yourdfpy,
+``q_F = m * q_L + o`` (docs/reference/urdf.md). robot_state_publisher, MoveIt, yourdfpy,
 pinocchio and ros2_control's GenericSystem all compute the follower from its leader, so
 every forward kinematics here must too: a follower left at zero puts a gripper finger at
 the wrong place by its offset plus its travel.

@@ -12,7 +12,7 @@ from descgen.core.record import record
 
 # ros2_controllers (jazzy) plugin -> (MoveIt controller type, action namespace it serves):
 # JTC serves ~/follow_joint_trajectory, both gripper action controllers ~/gripper_cmd
-# (reference/ros2_control_jazzy.md §8, moveit_config.md §5).
+# (docs/reference/ros2_control_jazzy.md §8, moveit_config.md §5).
 ACTION_SERVERS: dict[str, tuple[str, str]] = {
     "joint_trajectory_controller/JointTrajectoryController": ("FollowJointTrajectory", "follow_joint_trajectory"),
     "position_controllers/GripperActionController": ("GripperCommand", "gripper_cmd"),

@@ -3,7 +3,7 @@
 The audit places a few thousand boxes and frames per corpus pass; numpy costs microseconds
 per call on a 3x3, more than the arithmetic itself, so these helpers do the same
 arithmetic on tuples. The formulas are those of ``descgen.physics.transforms`` (URDF's fixed-axis
-roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll); reference/urdf.md), and the tests hold them
+roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll); docs/reference/urdf.md), and the tests hold them
 to numpy and to pinocchio.
 
 A rotation is three rows; a frame is (rotation, translation) and maps a point p of the

@@ -1,7 +1,7 @@
 """Rigid transforms as numpy 4x4 matrices, with URDF's conventions.
 
 URDF ``rpy`` is roll, pitch, yaw about the fixed X, Y, Z axes: R = Rz(yaw) Ry(pitch) Rx(roll)
-(urdfdom ``Rotation::setFromRPY``; reference/urdf.md).
+(urdfdom ``Rotation::setFromRPY``; docs/reference/urdf.md).
 """
 
 from __future__ import annotations

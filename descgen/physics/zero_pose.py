@@ -4,7 +4,7 @@ known poses (POSE010, evidence/known_poses.md) that every ``check`` evaluates.
 The same kinematics as :mod:`descgen.physics.kinematics` (a joint's frame is ``origin * motion(q)``,
 mimic joints follow their leaders, the axis is normalised), without numpy: the audit poses
 every robot at zero once and reads a few thousand 3-vectors from it, where numpy's import
-(~60 ms) and per-call cost on 4x4 matrices are most of the work. tests/test_zero_pose.py
+(~60 ms) and per-call cost on 4x4 matrices are most of the work. tests/test_audit_plain_floats.py
 holds the frames to :func:`descgen.physics.kinematics.forward`.
 """
 

@@ -8,9 +8,11 @@ from typing import Any
 
 import yaml
 
+from descgen.codes.generate import GEN003
 from descgen.core.findings import Finding, Where
 from descgen.core.model import Controller, Robot
 from descgen.core.xmlcompare import parse
+from descgen.read import params as rcl
 
 _JOINT_LISTS = ("joints", "left_wheel_names", "right_wheel_names")
 
@@ -50,18 +52,15 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
     try:
         doc: Any = safe_load(files[path])
     except yaml.YAMLError as exc:
-        return [
-            Finding(
-                "GEN003", "error", f"controllers YAML does not load: {exc}", "check the template", "file:" + path, loc
-            )
-        ]
+        return [GEN003.finding(f"controllers YAML does not load: {exc}", "check the template", "file:" + path, loc)]
+    # and as the controller manager loads it: rcl's parser types plain scalars its own way (an
+    # unquoted y is true, 1e3 a double), so what PyYAML reads back must also be what ROS reads
+    out += _as_ros_loads(files[path], str(where / path), doc, path)
     command, state, urdf_joints = exported_interfaces(files[f"urdf/{robot.name}.urdf"])
     cm = (doc or {}).get("controller_manager", {}).get("ros__parameters", {})
     if not isinstance(cm.get("update_rate"), int):
         out.append(
-            Finding(
-                "GEN003",
-                "error",
+            GEN003.finding(
                 "controller_manager update_rate is not an integer",
                 "write the rate as a whole number of Hz",
                 "file:" + path,
@@ -79,9 +78,7 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
             for joint in [value] if isinstance(value, str) else value or []:
                 if joint not in urdf_joints:
                     out.append(
-                        Finding(
-                            "GEN003",
-                            "error",
+                        GEN003.finding(
                             f"controller '{name}' {key} names '{joint}', not a URDF joint",
                             "fix the joint name in the spec",
                             f"controller:{name}",
@@ -95,9 +92,7 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
             for joint, iface in pairs:
                 if (joint, iface) not in exported:
                     out.append(
-                        Finding(
-                            "GEN003",
-                            "error",
+                        GEN003.finding(
                             f"controller '{name}' {verb} '{joint}/{iface}', not exported",
                             f"add the {kind} interface in ros2_control",
                             f"controller:{name}",
@@ -109,3 +104,39 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
 
 def _tuple(v: object) -> object:
     return tuple(v) if isinstance(v, list) else v
+
+
+def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
+    if not isinstance(value, dict):
+        return {prefix: tuple(value) if isinstance(value, list) else value}
+    out: dict[str, Any] = {}
+    for k, v in value.items():
+        out.update(_flat(v, f"{prefix}.{k}" if prefix else str(k)))
+    return out
+
+
+def _as_ros_loads(text: str, file: str, doc: Any, path: str) -> list[Finding]:
+    """Findings where rcl (descgen/read/params.py) reads the file otherwise than yaml.safe_load."""
+    loaded = rcl.parse(text, file)
+    out = [
+        GEN003.finding(
+            f"controllers YAML does not load in ROS: {p.message}", "check the template", "file:" + path, p.where
+        )
+        for p in loaded.problems
+        if p.kind == "error"
+    ]
+    for node in loaded.nodes:
+        entry = (doc or {}).get(node.name.lstrip("/"), {}) if isinstance(doc, dict) else {}
+        yaml_params = _flat(entry.get("ros__parameters", {})) if isinstance(entry, dict) else {}
+        for q in node.params:
+            theirs = yaml_params.get(q.name)
+            if theirs != q.value or type(theirs) is not type(q.value):
+                out.append(
+                    GEN003.finding(
+                        f"{node.name.lstrip('/')}.{q.name} reads as {q.value!r} in ROS but {theirs!r} in YAML",
+                        "quote the value (render/context.py quotes what rcl would type otherwise)",
+                        "file:" + path,
+                        q.where,
+                    )
+                )
+    return out

@@ -19,6 +19,8 @@ from typing import Any
 import yaml
 from lxml import etree
 
+from descgen.codes import Code
+from descgen.codes.generate import GEN090, GEN091, GEN092, GEN093
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.physics import moveit_groups as derive
@@ -32,33 +34,31 @@ class _Proof:
         self.dir = package_dir
         self.findings: list[Finding] = []
 
-    def fail(self, code: str, rel: str, message: str) -> None:
+    def fail(self, code: Code, rel: str, message: str) -> None:
         hint = (
             "a descgen or template bug: report it (with the spec); a template override must keep the values"
-            if code != "GEN092"
+            if code != GEN092
             else "fix the template that wrote it (or report a descgen bug)"
         )
-        self.findings.append(
-            Finding(code, "error", f"{rel}: {message}", hint, f"file:{rel}", Where(str(self.dir / rel)))
-        )
+        self.findings.append(code.finding(f"{rel}: {message}", hint, f"file:{rel}", Where(str(self.dir / rel))))
 
     def yaml(self, rel: str) -> Any:
         try:
             return safe_load(self.files[rel])  # yaml.safe_load, through libyaml when there
         except yaml.YAMLError as exc:
-            self.fail("GEN092", rel, f"does not parse as YAML: {str(exc).splitlines()[0]}")
+            self.fail(GEN092, rel, f"does not parse as YAML: {str(exc).splitlines()[0]}")
             return None
 
     def number(self, rel: str, key: str, got: object, want: float) -> None:
         """``got`` must be a float (not an int, not a bool) equal to ``want``."""
         if not isinstance(got, float):
-            self.fail("GEN091", rel, f"{key} reads back as {type(got).__name__} {got!r}, not a float")
+            self.fail(GEN091, rel, f"{key} reads back as {type(got).__name__} {got!r}, not a float")
         elif got != want:
-            self.fail("GEN090", rel, f"{key} is {got!r}, the model says {want!r}")
+            self.fail(GEN090, rel, f"{key} is {got!r}, the model says {want!r}")
 
     def equal(self, rel: str, key: str, got: object, want: object) -> None:
         if got != want:
-            self.fail("GEN090", rel, f"{key} is {got!r}, the model says {want!r}")
+            self.fail(GEN090, rel, f"{key} is {got!r}, the model says {want!r}")
 
 
 def check(
@@ -85,7 +85,7 @@ def check(
             try:
                 ast.parse(text, filename=rel)
             except SyntaxError as exc:
-                p.fail("GEN092", rel, f"is not valid Python: {exc.msg} (line {exc.lineno})")
+                p.fail(GEN092, rel, f"is not valid Python: {exc.msg} (line {exc.lineno})")
     _package_xml(p, robot)
     return p.findings + _audit(files, robot, package_dir)
 
@@ -116,7 +116,7 @@ def _moved(f: Finding, scratch: str, package_dir: str) -> Finding:
 def _mapping(p: _Proof, rel: str, doc: object, key: str) -> dict[str, Any]:
     value = doc.get(key) if isinstance(doc, dict) else None
     if not isinstance(value, dict):
-        p.fail("GEN090", rel, f"has no mapping '{key}'")
+        p.fail(GEN090, rel, f"has no mapping '{key}'")
         return {}
     return value
 
@@ -153,7 +153,7 @@ def _kinematics(p: _Proof, settings: m.MoveItSettings) -> None:
     rel = "config/kinematics.yaml"
     doc = p.yaml(rel)
     if not isinstance(doc, dict):
-        p.fail("GEN090", rel, "is not a mapping of groups")
+        p.fail(GEN090, rel, "is not a mapping of groups")
         return
     p.equal(rel, "the groups", sorted(doc), sorted(k.group for k in settings.kinematics))
     for k in settings.kinematics:
@@ -181,7 +181,7 @@ def _controllers(p: _Proof, robot: m.Robot) -> None:
     rel = "config/moveit_controllers.yaml"
     doc = p.yaml(rel)
     if not isinstance(doc, dict):
-        p.fail("GEN090", rel, "is not a mapping")
+        p.fail(GEN090, rel, "is not a mapping")
         return
     p.equal(
         rel,
@@ -202,14 +202,14 @@ def _controllers(p: _Proof, robot: m.Robot) -> None:
     for c in want:
         got = smcm.get(c.name)
         if not isinstance(got, dict):
-            p.fail("GEN090", rel, f"has no entry for controller '{c.name}'")
+            p.fail(GEN090, rel, f"has no entry for controller '{c.name}'")
             continue
         p.equal(rel, f"{c.name}.type", got.get("type"), c.type)
         p.equal(rel, f"{c.name}.action_ns", got.get("action_ns"), c.action_ns)
         p.equal(rel, f"{c.name}.default", got.get("default"), True)
         p.equal(rel, f"{c.name}.joints", got.get("joints"), list(c.joints))
         if not any(set(got.get("joints") or ()) <= g for g in groups):
-            p.fail("GEN090", rel, f"{c.name}.joints are not the joints of one planning group")
+            p.fail(GEN090, rel, f"{c.name}.joints are not the joints of one planning group")
 
 
 def _initial_positions(p: _Proof, robot: m.Robot) -> None:
@@ -236,7 +236,7 @@ def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> No
     try:
         xml, _ = expand_packages({package_name(robot): description, moveit: p.files}, moveit, rel, {})
     except InputError as exc:
-        p.fail("GEN093", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
+        p.fail(GEN093, rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
         return
     doc = etree.fromstring(xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
     for name, value in derive.initial_positions(robot):
@@ -254,9 +254,7 @@ def _mock_start(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> No
             except ValueError:
                 got = math.nan
             if got != value:
-                p.fail(
-                    "GEN093", rel, f"the mock hardware starts {name} at {e.text!r}, the initial state says {value!r}"
-                )
+                p.fail(GEN093, rel, f"the mock hardware starts {name} at {e.text!r}, the initial state says {value!r}")
 
 
 def _srdf(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> None:
@@ -280,13 +278,13 @@ def _srdf(p: _Proof, robot: m.Robot, description: Mapping[str, str]) -> None:
         xml, _ = expand_packages({moveit: p.files}, moveit, rel, {})
         diff = first_difference(parse(xml), parse(description[source]))
     except InputError as exc:
-        p.fail("GEN090", rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
+        p.fail(GEN090, rel, f"xacro failed: {'; '.join(f.message for f in exc.findings)}")
         return
     except etree.XMLSyntaxError as exc:
-        p.fail("GEN092", rel, f"does not parse: {exc}")
+        p.fail(GEN092, rel, f"does not parse: {exc}")
         return
     if diff:
-        p.fail("GEN090", rel, f"expanded by xacro (as MoveItConfigsBuilder loads it) differs from {source} at {diff}")
+        p.fail(GEN090, rel, f"expanded by xacro (as MoveItConfigsBuilder loads it) differs from {source} at {diff}")
 
 
 def _package_xml(p: _Proof, robot: m.Robot) -> None:
@@ -296,10 +294,10 @@ def _package_xml(p: _Proof, robot: m.Robot) -> None:
     try:
         pkg = read_manifest(p.files[rel])
     except (invalid_package(), ValueError) as exc:
-        p.fail("GEN092", rel, f"is invalid: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
+        p.fail(GEN092, rel, f"is invalid: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
         return
     p.equal(rel, "the package name", pkg.name, moveit_package_name(robot))
     from descgen.render.context import package_name
 
     if package_name(robot) not in set(pkg.exec_depends):
-        p.fail("GEN090", rel, f"does not exec_depend on {package_name(robot)}")
+        p.fail(GEN090, rel, f"does not exec_depend on {package_name(robot)}")

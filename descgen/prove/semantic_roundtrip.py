@@ -9,6 +9,8 @@ from typing import Any
 
 from lxml import etree
 
+from descgen.codes import Code
+from descgen.codes.generate import GEN031, GEN032, GEN033
 from descgen.core.findings import Finding, Where
 from descgen.core.model import Interface, Robot
 from descgen.core.xmlcompare import line_of, parse
@@ -47,16 +49,14 @@ def _same(a: Any, b: Any) -> bool:
 
 
 class _Diffs:
-    def __init__(self, file: str, code: str, what: str) -> None:
+    def __init__(self, file: str, code: Code, what: str) -> None:
         self.file, self.code, self.what = file, code, what
         self.found: list[Finding] = []
 
     def eq(self, path: str, model: Any, written: Any, line: int = 0) -> None:
         if not _same(model, written):
             self.found.append(
-                Finding(
-                    self.code,
-                    "error",
+                self.code.finding(
                     f"{self.what} read back differs at {path}: model {model!r}, file {written!r}",
                     "the template writes this wrong (or the file was edited)",
                     path.split("/")[0],
@@ -70,13 +70,11 @@ def srdf_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> list[Fin
     sem = robot.semantic
     if sem is None or rel not in files:
         return []
-    d = _Diffs(str(where / rel), "GEN031", "SRDF")
+    d = _Diffs(str(where / rel), GEN031, "SRDF")
     try:
         root = parse(files[rel])
     except etree.XMLSyntaxError as exc:
-        return [
-            Finding("GEN031", "error", f"SRDF does not parse: {exc}", "check the SRDF template", "file", Where(d.file))
-        ]
+        return [GEN031.finding(f"SRDF does not parse: {exc}", "check the SRDF template", "file", Where(d.file))]
     d.eq("robot/name", robot.name, root.get("name"), line_of(root))
     groups = {g.get("name"): g for g in root.findall("group")}
     d.eq("groups", [g.name for g in sem.groups], list(groups))
@@ -148,7 +146,7 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
     rc = robot.ros2_control
     if rc is None:
         return []
-    d = _Diffs(str(where / rel), "GEN032", "ros2_control block")
+    d = _Diffs(str(where / rel), GEN032, "ros2_control block")
     root = parse(files[rel])
     expected = rc.hardware_blocks()
     found = root.findall("ros2_control")
@@ -230,7 +228,7 @@ def controllers_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> l
     rc = robot.ros2_control
     if rc is None or rel not in files:
         return []
-    d = _Diffs(str(where / rel), "GEN033", "controllers YAML")
+    d = _Diffs(str(where / rel), GEN033, "controllers YAML")
     doc = safe_load(files[rel]) or {}
     cm = doc.get("controller_manager", {}).get("ros__parameters", {})
     d.eq("controller_manager/update_rate", rc.update_rate, cm.get("update_rate"))

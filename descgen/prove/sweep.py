@@ -14,8 +14,11 @@ runs is compared with a fresh render.
 The table itself (:func:`context`, forward kinematics at every grid step, most of a warm
 ``check``'s sweep) is kept in the result cache (descgen/infra/result_cache.py) under the hash of the
 model's values (every field but where it was written), the collision runs, the steps and
-descgen's own source: an unchanged robot is shown from the cache, and the
-file is still rendered and compared with the committed one every time.
+descgen's own source (a local cache's key, descgen/infra/keys.py): an unchanged robot is shown
+from the cache, and the file is still rendered and compared with the committed one every time.
+The runs' key in the file is the sweep's memo key (``physics.sweep.memo_key``: the matrix's key,
+the state, the steps, the disabled pairs, the sweep's ALGORITHM and pinocchio's and coal's
+versions), the same on every machine with those libraries.
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ from descgen.core.findings import InputError
 from descgen.core.model import Robot
 from descgen.infra import evidence_hash, result_cache
 from descgen.infra.safeio import read_bounded
+from descgen.physics import collision
 from descgen.physics.sweep import (
     DEFAULT_STEPS,
     Settings,
@@ -214,8 +218,14 @@ def reuse_committed(robot: Robot, package_dir: Path) -> bool:
 
 def reuse(robot: Robot, committed: str | None) -> bool:
     """Take the collision runs from the committed ``evidence/sweep.md`` when it records the
-    same input hash as ``robot`` (with its matrix) has now. True when they were taken."""
-    if committed is None:
+    same input hash as ``robot`` (with its matrix) has now. True when they were taken; never
+    with ``DESCGEN_RECOMPUTE=1`` (descgen/infra/evidence_hash.py), nor when pinocchio and coal
+    are installed in other versions than those that computed the matrix (the runs are then
+    computed here, and the file reads the same when they are the same)."""
+    if committed is None or evidence_hash.recompute():
+        return False
+    sem = robot.semantic
+    if sem is not None and sem.matrix is not None and not collision.reusable_here(dict(sem.matrix.libraries)):
         return False
     found = _DATA.search(committed)
     state, values = state_values(robot, None)

@@ -22,6 +22,7 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any, cast
 
+from descgen.codes.generate import GEN030
 from descgen.core.findings import Finding, Where
 from descgen.core.model import (
     Box,
@@ -128,9 +129,7 @@ class _Compare:
         field = field if isinstance(field, str) else "/".join(field)
         line = self.lines.get((kind, name), 0)
         self.found.append(
-            Finding(
-                "GEN030",
-                "error",
+            GEN030.finding(
                 f"URDF read back by {self.reader} differs at {kind}:{name}/{field}: "
                 f"model {_show(model)}, URDF {_show(urdf)}",
                 "the URDF template writes this field wrong (or the file was edited)",
@@ -287,9 +286,7 @@ def source_lines(urdf_text: str) -> dict[tuple[str, str], int]:
 
 def _unreadable(reader: str, why: str, file: str, line: int = 0) -> list[Finding]:
     return [
-        Finding(
-            "GEN030",
-            "error",
+        GEN030.finding(
             f"{reader} cannot read the URDF: {why}",
             "the URDF template writes an invalid file (or the file was edited)",
             "file",

@@ -13,6 +13,7 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
+from descgen.codes.generate import GEN020, GEN021
 from descgen.core.findings import Finding, Where
 from descgen.core.model import Robot
 
@@ -29,13 +30,12 @@ def start_check_urdf(files: dict[str, str], robot: Robot, where: Path) -> Callab
     tool = shutil.which("check_urdf")
     if tool is None:
         required = os.environ.get("DESCGEN_REQUIRE_TOOLS") == "1"
-        missing = Finding(
-            "GEN020",
-            "error" if required else "info",
+        missing = GEN020.finding(
             "check_urdf (urdfdom) is not installed: the URDF was not checked by urdfdom",
             "install Debian's liburdfdom-tools",
             "file:" + rel,
             loc,
+            severity="error" if required else "info",
         )
         return lambda: [missing]
     with tempfile.NamedTemporaryFile("w", suffix=".urdf", delete=False, encoding="utf-8") as fh:
@@ -64,14 +64,12 @@ def start_check_urdf(files: dict[str, str], robot: Robot, where: Path) -> Callab
 
 
 def _judged(code: int, err: str, rel: str, loc: Where) -> list[Finding]:
-    # urdfdom logs some errors without failing (reference/urdf.md): treat them as failures
+    # urdfdom logs some errors without failing (docs/reference/urdf.md): treat them as failures
     logged = [ln for ln in err.splitlines() if "Error" in ln or "error" in ln.split(":")[0]]
     if code != 0 or logged:
         detail = "; ".join(logged[:3]) or err.strip()[:300]
         return [
-            Finding(
-                "GEN021",
-                "error",
+            GEN021.finding(
                 f"check_urdf rejected the URDF (exit {code}): {detail}",
                 "the URDF template or the model is broken",
                 "file:" + rel,

@@ -19,6 +19,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from descgen.codes.generate import GEN001
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.model import Robot, Ros2Control
 from descgen.core.xmlcompare import first_difference, parse
@@ -138,9 +139,7 @@ def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list
         expanded = expand(files, xacro_path)
     except InputError as exc:  # the sandbox turns every xacro failure into one
         return [
-            Finding(
-                "GEN001",
-                "error",
+            GEN001.finding(
                 f"xacro failed to expand the generated Xacro: {'; '.join(f.message for f in exc.findings)}",
                 "a template produced invalid Xacro; check --templates overrides",
                 "file:" + xacro_path,
@@ -151,9 +150,7 @@ def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list
         diff = first_difference(parse(expanded), parse(files[urdf_path]))
     except etree.XMLSyntaxError as exc:
         return [
-            Finding(
-                "GEN001",
-                "error",
+            GEN001.finding(
                 f"generated XML does not parse: {exc}",
                 "check the templates",
                 "file:" + urdf_path,
@@ -162,9 +159,7 @@ def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list
         ]
     if diff:
         return [
-            Finding(
-                "GEN001",
-                "error",
+            GEN001.finding(
                 f"xacro expansion differs from {urdf_path} at {diff}",
                 "the Xacro and URDF templates disagree; fix the template that changed",
                 "file:" + xacro_path,
@@ -239,9 +234,7 @@ def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim
 
 
 def _gen001(message: str, xacro_path: str, loc: Where) -> Finding:
-    return Finding(
-        "GEN001",
-        "error",
+    return GEN001.finding(
         message,
         "the Xacro's hardware variants disagree with the spec; fix the ros2_control templates",
         "file:" + xacro_path,

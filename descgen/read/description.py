@@ -97,7 +97,8 @@ def with_given_files(
     if options.srdf is not None:
         from descgen.read.srdf import read_srdf_text
 
-        semantic, srdf_name, more = read_srdf_text(_read(options.srdf, "SRDF", given), str(options.srdf))
+        data, shown = srdf_bytes(options, given)
+        semantic, srdf_name, more = read_srdf_text(data, shown)
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
@@ -124,6 +125,19 @@ def with_given_files(
         )
         found += more
     return robot, found
+
+
+def srdf_bytes(options: Options, given: Mapping[Path, bytes] | None = None) -> tuple[bytes, str]:
+    """The SRDF's bytes and how findings name it: an ``.srdf.xacro`` (MoveIt packages ship them)
+    is expanded in the same sandbox, with the same --xacro-arg values, as a URDF Xacro."""
+    assert options.srdf is not None
+    shown = str(options.srdf)
+    if not options.srdf.name.endswith(".xacro"):
+        return _read(options.srdf, "SRDF", given or {}), shown
+    from descgen.read.xacro_file import expand_located
+
+    expansion = expand_located(options.srdf, shown, options.xacro_args, options.package_paths, options.trust_xacro)
+    return expansion.xml, f"{shown} (expanded)"
 
 
 def _read(path: Path, what: str, given: Mapping[Path, bytes]) -> bytes:

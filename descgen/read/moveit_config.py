@@ -7,7 +7,7 @@ file:line:col of every value. A file that cannot be read, or whose root is not a
 is an InputError (exit 2); a value of the wrong type becomes a TypeProblem for the rules.
 
 The parameter types are the ones MoveIt declares at moveit/moveit2 ``jazzy``
-(/work/shared/reference/moveit_config.md): robot_model_loader.cpp and Pilz's
+(docs/reference/moveit_config.md): robot_model_loader.cpp and Pilz's
 joint_limits_rosparam.hpp for joint_limits.yaml, moveit_simple_controller_manager.cpp for the
 controllers, kinematics_parameters.yaml and kdl_kinematics_parameters.yaml for kinematics.
 """
@@ -19,7 +19,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from descgen.core.findings import Finding, InputError, Where
+from descgen.codes.read import MOVEIT020, MOVEIT021, READ044
+from descgen.core.findings import InputError, Where
 from descgen.core.moveit_model import (
     InitialPosition,
     JointLimits,
@@ -196,9 +197,7 @@ def _not_mapping(shown: str, message: str, where: Where) -> InputError:
     name = Path(shown).name
     return InputError(
         [
-            Finding(
-                "MOVEIT020",
-                "error",
+            MOVEIT020.finding(
                 f"{name}: {message}",
                 "MoveIt loads this file as ROS parameters: write it as 'key: value' lines "
                 "(see moveit_resources' panda_moveit_config/config)",
@@ -233,9 +232,7 @@ def read_moveit_config(path: Path) -> MoveItConfig:
     if not folder.is_dir():
         raise InputError(
             [
-                Finding(
-                    "MOVEIT021",
-                    "error",
+                MOVEIT021.finding(
                     "not a folder" if folder.exists() else "folder not found",
                     "name a MoveIt config package (the folder that holds config/joint_limits.yaml)",
                     "file",
@@ -243,14 +240,12 @@ def read_moveit_config(path: Path) -> MoveItConfig:
                 )
             ]
         )
-    refuse_outside(folder, path, "config folder", code="READ044", display=shown)  # config/ a link out
+    refuse_outside(folder, path, "config folder", code=READ044, display=shown)  # config/ a link out
     present = {name: folder / name for name in FILES if os.path.lexists(folder / name)}
     if not present:
         raise InputError(
             [
-                Finding(
-                    "MOVEIT021",
-                    "error",
+                MOVEIT021.finding(
                     f"no MoveIt config files here (none of {', '.join(FILES)})",
                     "name a MoveIt config package, as the Setup Assistant lays it out (config/, launch/)",
                     "file",

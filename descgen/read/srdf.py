@@ -4,15 +4,20 @@ from __future__ import annotations
 
 import math
 
+from lxml import etree
+
+from descgen.codes.read import READ011, READ042, READ047
 from descgen.core import model as m
-from descgen.core.findings import Finding, Where
+from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.read.urdf import parse_xml
 
 
 def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Finding]]:
-    """The semantics, the SRDF's robot name, and what could not be read."""
+    """The semantics, the SRDF's robot name, and what could not be read. InputError (READ047)
+    for a file that is no SRDF: it would read as an empty one."""
     root = parse_xml(data, file)
+    _refuse_non_srdf(root, file)
     found: list[Finding] = []
 
     def where(e: object) -> Where:
@@ -42,9 +47,7 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
                 numbers = []
             if not all(math.isfinite(v) for v in numbers):
                 found.append(
-                    Finding(
-                        "READ042",
-                        "error",
+                    READ042.finding(
                         f"group state '{s.get('name')}' joint '{j.get('name')}' value '{raw}' is not a finite number",
                         "write the joint position as a plain decimal number",
                         f"group_state:{s.get('name')}",
@@ -55,13 +58,12 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
                 continue
             if len(numbers) != 1 and j.get("name") not in multi_dof:
                 found.append(
-                    Finding(
-                        "READ011",
-                        "warning" if numbers else "error",
+                    READ011.finding(
                         f"group state '{s.get('name')}' joint '{j.get('name')}' value '{raw}' is not one number",
                         "multi-DOF values are not checked; write one number per 1-DOF joint",
                         f"group_state:{s.get('name')}",
                         where(j),
+                        severity="warning" if numbers else "error",
                     )
                 )
             if len(numbers) > 1 and j.get("name") in multi_dof:
@@ -92,3 +94,20 @@ def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Findin
         where(root),
     )
     return semantic, root.get("name", ""), found
+
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+def _refuse_non_srdf(root: etree._Element, file: str) -> None:
+    tag = root.tag
+    why = ""
+    if tag != "robot":
+        why = f"its root is <{tag}>, not <robot>"
+    elif root.find("link") is not None or root.find("joint") is not None:
+        why = "it has <link> and <joint> elements: it is a URDF"
+    elif any(str(e.tag).startswith(f"{{{XACRO_NS}}}") for e in root.iter()):
+        why = "it still holds Xacro elements (an .srdf.xacro is expanded when its name ends in .xacro)"
+    if why:
+        where = Where(file, line_of(root))
+        raise InputError([READ047.finding(f"not an SRDF: {why}", "give the SRDF, or its .srdf.xacro", "srdf", where)])

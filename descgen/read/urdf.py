@@ -3,7 +3,7 @@
 It loads broken descriptions (duplicate names, two parents, cycles, missing limits,
 dangling references, bad numbers) so the audit can name the defect; what it cannot
 read becomes a finding (READ…), never an exception. URDF is SI already (REP 103), so no
-unit is converted here. Defaults follow urdfdom (reference/urdf.md): a missing
+unit is converted here. Defaults follow urdfdom (docs/reference/urdf.md): a missing
 ``<origin>`` is identity, a missing ``<axis>`` is (1, 0, 0), and ``<axis/>`` without
 ``xyz`` is (0, 0, 0).
 """
@@ -17,6 +17,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from descgen.codes.read import READ001, READ002, READ003, READ010, READ012, READ013, READ041, READ042
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
@@ -38,9 +39,7 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
     if len(data) > MAX_BYTES:
         raise InputError(
             [
-                Finding(
-                    "READ041",
-                    "error",
+                READ041.finding(
                     f"file is {len(data) / 1e6:.0f} MB; a description is at most {MAX_BYTES / MIB:g} MiB",
                     "is this the right file?",
                     "file",
@@ -54,9 +53,7 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
         line = data[: data.upper().index(b"<!DOCTYPE")].count(b"\n") + 1
         raise InputError(
             [
-                Finding(
-                    "READ002",
-                    "error",
+                READ002.finding(
                     "the file declares a DTD (entities could expand or read files)",
                     "remove the <!DOCTYPE ...> declaration; URDF needs none",
                     "file",
@@ -70,9 +67,7 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
         line, col = exc.position if exc.position else (0, 0)
         raise InputError(
             [
-                Finding(
-                    "READ001",
-                    "error",
+                READ001.finding(
                     f"malformed XML: {_one_line(exc.msg)}",
                     "fix the XML at this position",
                     "file",
@@ -84,9 +79,7 @@ def parse_xml(data: bytes, file: str) -> etree._Element:
     if doc.docinfo.internalDTD is not None or doc.docinfo.doctype:
         raise InputError(
             [
-                Finding(
-                    "READ002",
-                    "error",
+                READ002.finding(
                     "the file declares a DTD (entities could expand or load files)",
                     "remove the <!DOCTYPE ...> declaration",
                     "file",
@@ -135,7 +128,7 @@ class _Reader:
         return Where(self.file, line_of(e))  # a plain URDF: no element lookup (an lxml proxy hash each)
 
     def problem(self, e: etree._Element, message: str, hint: str, subject: str) -> None:
-        self.findings.append(Finding("READ010", "error", message, hint, subject, self.where(e)))
+        self.findings.append(READ010.finding(message, hint, subject, self.where(e)))
 
     def floats(
         self, e: etree._Element | None, attr: str, n: int, default: tuple[float, ...] | None, subject: str
@@ -169,9 +162,7 @@ class _Reader:
         """nan, inf or an overflowing 1e999: urdfdom would accept it and every computation
         downstream turns into nan, so the value is reported and then treated as missing."""
         self.findings.append(
-            Finding(
-                "READ042",
-                "error",
+            READ042.finding(
                 f"{what} is not a finite number",
                 "write the measured value as a plain decimal number",
                 subject,
@@ -461,9 +452,7 @@ def read_urdf_text(
     if root.tag != "robot":
         raise InputError(
             [
-                Finding(
-                    "READ003",
-                    "error",
+                READ003.finding(
                     f"root element is <{root.tag}>, not <robot>",
                     "is this a URDF?",
                     "file",
@@ -473,9 +462,7 @@ def read_urdf_text(
         )
     if not root.get("name"):
         r.findings.append(
-            Finding(
-                "READ012",
-                "error",
+            READ012.finding(
                 "<robot> has no name (urdfdom refuses the file)",
                 'add name="..." to <robot>',
                 "robot",
@@ -484,9 +471,7 @@ def read_urdf_text(
         )
     if root.find("link") is None:
         r.findings.append(
-            Finding(
-                "READ013",
-                "error",
+            READ013.finding(
                 "the robot has no links (urdfdom refuses the file)",
                 "is this the right file?",
                 "robot",

@@ -8,7 +8,7 @@ Why it is still an independent proof: it shares no code with what wrote the URDF
 does not import the model, the templates, the renderer, ``descgen.physics.transforms`` or the audit's
 tolerant URDF reader (``readers/urdf.py``, which builds the model classes): it turns the
 XML into its own plain tuples, with its own rpy -> matrix, following urdfdom's rules
-(``/work/shared/reference/urdf.md``, the Jazzy parser robot_state_publisher uses) rather than
+(``docs/reference/urdf.md``, the Jazzy parser robot_state_publisher uses) rather than
 the model's. yourdfpy stays what it was, the oracle: ``tests/test_urdf_readback.py`` requires
 both readers to agree on every example-robot-data URDF and on the generated one, and
 ``descgen check --thorough`` runs the yourdfpy read-back too.

@@ -1,6 +1,6 @@
 """A restricted evaluator for the expressions inside an untrusted Xacro.
 
-xacro evaluates ``${...}`` and ``$(eval ...)`` with Python's ``eval`` (reference/xacro.md,
+xacro evaluates ``${...}`` and ``$(eval ...)`` with Python's ``eval`` (docs/reference/xacro.md,
 "Security": not a sandbox). Here an expression is parsed with :mod:`ast` and interpreted
 node by node: only literals, arithmetic, comparisons, boolean logic, conditional
 expressions, containers, comprehensions, subscripts, f-strings, names from the symbol

@@ -1,7 +1,7 @@
 """Expand a Xacro in process with the PyPI ``xacro`` package, as data.
 
 xacro runs ``${...}`` and ``$(eval ...)`` through Python's ``eval`` and lets a file read any
-file and environment variable (reference/xacro.md, "Security"). An audited Xacro is someone
+file and environment variable (docs/reference/xacro.md, "Security"). An audited Xacro is someone
 else's file, so by default it is expanded in a sandbox: xacro still does the XML work
 (properties, macros, includes, conditionals), but
 
@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 from xml.dom import Node, expatbuilder
 
+from descgen.codes.read import READ004, READ030, READ031, READ032, READ033
 from descgen.core.findings import Finding, InputError, Where
 from descgen.infra import collector
 from descgen.meshes.packages import find_package as find_package  # re-exported: importer, simulate
@@ -56,7 +57,7 @@ MAX_ELEMENTS = 200_000
 MAX_TEXT = 50 * 1024 * 1024  # characters of all evaluated text together
 MAX_SECONDS = 30.0
 
-_CODES = {"expression": "READ030", "file": "READ031", "environment": "READ032", "limit": "READ033"}
+_CODES = {"expression": READ030, "file": READ031, "environment": READ032, "limit": READ033}
 _HINTS = {
     "expression": "audited Xacro is expanded with a restricted evaluator (docs/security.md); "
     "if you trust this file, pass --trust-xacro",
@@ -454,9 +455,7 @@ def expand_located(
             message = " ".join(str(exc).split()) or type(exc).__name__
             raise InputError(
                 [
-                    Finding(
-                        "READ004",
-                        "error",
+                    READ004.finding(
                         f"xacro could not expand the file: {message}",
                         "pass --xacro-arg name:=value for its arguments and --package-path for $(find)",
                         "file",
@@ -795,4 +794,4 @@ def _refusal_finding(refusal: _Refusal, top: Path, display: str) -> Finding:
     shown = display if file is None or Path(os.path.realpath(file)) == top else file
     line, col = _line_of(file or str(top), refusal.needle)
     kind = refusal.error.kind
-    return Finding(_CODES[kind], "error", refusal.error.message, _HINTS[kind], "file", Where(shown, line, col))
+    return _CODES[kind].finding(refusal.error.message, _HINTS[kind], "file", Where(shown, line, col))

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import functools
-import hashlib
 import os
 from collections.abc import Callable, Collection
 from importlib import resources
@@ -14,9 +13,12 @@ import jinja2
 from jinja2.exceptions import SecurityError
 from jinja2.sandbox import ImmutableSandboxedEnvironment
 
+from descgen.codes.generate import GEN061, GEN065
 from descgen.core.cache_dir import cache_folder
-from descgen.core.findings import Finding, InputError, Where
+from descgen.core.findings import InputError, Where
 from descgen.core.model import Robot
+from descgen.infra import keys
+from descgen.infra.evidence_hash import sha256
 from descgen.infra.safeio import MIB, Codes, read_in_folder
 from descgen.meshes.paths import MESH_FOLDER, own_meshes
 from descgen.render import context, escaping, header
@@ -37,13 +39,16 @@ def _bytecode_cache(sandboxed: bool) -> jinja2.BytecodeCache | None:
     entry by the template's name and file and recompiles when the source's checksum differs;
     None (compile every time) when caching is off or the folder cannot be made.
 
-    The code depends on more than the source, so the folder is named by the rest: jinja2's
-    version, the environment (the sandbox compiles calls through ``environment.call``, which
-    checks them; plain code calls directly: one loaded by the other crashes, or skips the
-    sandbox's checks) and the code generator (escaping.py, by its bytes)."""
-    generator = hashlib.sha256(Path(escaping.__file__).read_bytes()).hexdigest()[:16]
+    The code depends on more than the source, so the folder is named by a key of the rest
+    (descgen/infra/keys.py): jinja2's version, the environment (the sandbox compiles calls
+    through ``environment.call``, which checks them; plain code calls directly: one loaded by
+    the other crashes, or skips the sandbox's checks) and the code generator (escaping.py, by
+    its bytes). Not by the rest of descgen's source: no other module shapes the compiled code,
+    and a folder per edit would pile up (nothing prunes them)."""
+    generator = sha256(Path(escaping.__file__).read_bytes())
     kind = "sandbox" if sandboxed else "plain"
-    folder = cache_folder(f"jinja2-{jinja2.__version__}-{kind}-{generator}")
+    key = keys.key("compiled templates", 1, {"environment": kind, "generator": generator}, ("Jinja2",), keys.NOTHING)
+    folder = cache_folder(f"jinja2-{kind}-{key[:16]}")
     if folder is None:
         return None
     return jinja2.FileSystemBytecodeCache(str(folder))
@@ -63,7 +68,7 @@ class _SandboxedEnvironment(ImmutableSandboxedEnvironment):
 
 
 MAX_TEMPLATE_BYTES = 1 * MIB  # descgen's largest template is a few kB
-_TEMPLATE_CODES = Codes(unreadable="GEN065", not_regular="GEN065", too_large="GEN065")
+_TEMPLATE_CODES = Codes(unreadable=GEN065, not_regular=GEN065, too_large=GEN065)
 
 
 class FolderLoader(jinja2.BaseLoader):
@@ -88,7 +93,7 @@ class FolderLoader(jinja2.BaseLoader):
         path = self.folder.joinpath(*parts)
         if not os.path.lexists(path):
             raise jinja2.TemplateNotFound(template)
-        data = read_in_folder(path, self.folder, "template", MAX_TEMPLATE_BYTES, code="GEN065", codes=_TEMPLATE_CODES)
+        data = read_in_folder(path, self.folder, "template", MAX_TEMPLATE_BYTES, code=GEN065, codes=_TEMPLATE_CODES)
         text = data.decode("utf-8", "replace")
         seen = _mtime(path)
         return text, str(path), lambda: _mtime(path) == seen
@@ -126,7 +131,7 @@ def environment(templates: Path | None = None, sandboxed: bool = False) -> jinja
     env.filters["vec"] = vec
     env.filters["comment"] = comment
     env.filters["mdcell"] = mdcell
-    # every output language gets its own escaping (DESIGN.md, "Trust boundary")
+    # every output language gets its own escaping (docs/security.md, "Every file descgen writes")
     for f in (dot, mdcode, mermaid, pyinner, pystr, yamlstr):
         env.filters[f.__name__] = f
     return env
@@ -209,9 +214,7 @@ def _render(env: jinja2.Environment, template: str, ctx: dict[str, Any], templat
         refused = isinstance(exc, SecurityError)
         raise InputError(
             [
-                Finding(
-                    "GEN061",
-                    "error",
+                GEN061.finding(
                     f"template {template} "
                     + ("asks for what the template sandbox refuses" if refused else "failed")
                     + f": {exc.message or type(exc).__name__}",

@@ -11,7 +11,8 @@ from descgen.core import display
 from descgen.core.model import CollisionMatrix, DisabledPair, Robot
 from descgen.meshes.paths import other_packages
 from descgen.meshes.paths import package_name as package_name  # the one definition, re-exported
-from descgen.physics import derive
+from descgen.physics import collision, derive
+from descgen.read.params import typed
 from descgen.render.control_blocks import control_blocks, control_depends
 from descgen.render.formatting import num, vec, xacro_text
 from descgen.render.views import Values, items
@@ -47,6 +48,16 @@ def _represent_list(dumper: yaml.SafeDumper, data: list[Any]) -> yaml.Node:
 
 
 _Dumper.add_representer(list, _represent_list)
+
+
+def _represent_str(dumper: yaml.SafeDumper, data: str) -> yaml.Node:
+    # rcl types a plain scalar by its own rules (docs/ros2_parameters.md): y, on, 010, 1e3 and inf
+    # are no strings to the controller manager, though PyYAML would leave them plain
+    style = "'" if not isinstance(typed(data, False, False), str) else None
+    return dumper.represent_scalar("tag:yaml.org,2002:str", data, style=style)
+
+
+_Dumper.add_representer(str, _represent_str)
 
 
 def controllers_doc(robot: Robot) -> dict[str, Any]:
@@ -273,6 +284,7 @@ def _matrix_summary(matrix: CollisionMatrix, disabled: list[DisabledPair]) -> di
         "padding": num(s.padding),
         "state": matrix.state,
         "hash": matrix.input_hash,
+        "libraries": collision.libraries_text(matrix.libraries),  # what computed the pairs: read back from the SRDF
         "counts": counts,
         "checked": matrix.checked,
         "enabled": max(0, matrix.checked - len({frozenset((d.link1, d.link2)) for d in disabled})),

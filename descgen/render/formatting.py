@@ -11,6 +11,8 @@ from collections.abc import Iterable
 import yaml
 from markupsafe import Markup
 
+from descgen.read.params import typed
+
 
 def num(x: float | int) -> str:
     """Shortest text that reads back as the same float; ``-0.0`` prints as ``0``;
@@ -112,8 +114,12 @@ def pyinner(text: object) -> str:
 
 def yamlstr(text: object) -> str:
     """A YAML scalar that reads back as the string ``text`` (quoted only when it must be:
-    ``null``, ``yes``, ``1e3``, a colon...), on one line."""
+    ``null``, ``yes``, ``1e3``, a colon...), on one line. Most YAML descgen writes is a ROS
+    parameter file, which rcl types by its own rules (``y``, ``010``, ``1e3`` and ``inf`` are
+    no strings there, though PyYAML leaves them plain): those are quoted too."""
     plain = yaml.safe_dump(str(text), width=2**31).removesuffix("\n").removesuffix("\n...")
+    if "\n" not in plain and plain[:1] not in ("'", '"') and not isinstance(typed(plain, False, False), str):
+        return yaml.safe_dump(str(text), width=2**31, default_style="'").removesuffix("\n")
     if "\n" not in plain:
         return plain
     # a line break in the text: a double-quoted scalar writes it (and every other control) as an escape
@@ -137,7 +143,7 @@ def mermaid(text: object) -> str:
 def xacro_text(text: object) -> str:
     """Spec text placed where xacro evaluates ``${}``/``$()``: every ``$`` becomes the
     expression ``${'$'}``, which evaluates to a literal dollar, so no spec text can become
-    a xacro expression or substitution (xacro 2.x lexer: reference/xacro.md)."""
+    a xacro expression or substitution (xacro 2.x lexer: docs/reference/xacro.md)."""
     return str(text).replace("$", "${'$'}")
 
 

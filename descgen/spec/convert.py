@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from descgen.codes import Code, raisable
 from descgen.core import units
 from descgen.core.findings import Finding, Where
 from descgen.infra.yamlsource import Document, Path_
@@ -58,8 +59,8 @@ class Converter:
         """:func:`sources.sources` of spec elements; None when nothing in the build cites one."""
         return sources(*objs) if self.cited else None
 
-    def error(self, code: str, message: str, hint: str, subject: str, where: Where) -> None:
-        self.findings.append(Finding(code, "error", message, hint, subject, where))
+    def error(self, code: Code, message: str, hint: str, subject: str, where: Where) -> None:
+        self.findings.append(code.finding(message, hint, subject, where))
 
     def si(
         self, w: Written | None, kind: str, role: str | None, path: Path_, default: float | None = None
@@ -76,7 +77,7 @@ class Converter:
             return si
         except Exception as exc:  # PydanticCustomError from convert/check_range
             ctx: dict[str, Any] = getattr(exc, "context", None) or {}
-            code = getattr(exc, "type", "UNIT002")
+            code = raisable(getattr(exc, "type", "UNIT002"))  # the error type is the finding code
             self.error(
                 code, str(ctx.get("message", exc)), str(ctx.get("hint", "")), ".".join(map(str, path)), self.where(path)
             )

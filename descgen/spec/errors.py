@@ -9,6 +9,8 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
+from descgen.codes import Code, raisable
+from descgen.codes.spec import SPEC001, SPEC002, SPEC003, SPEC050
 from descgen.core.findings import Finding
 from descgen.infra.yamlsource import Document, Path_
 
@@ -84,11 +86,11 @@ def data_path(data: Any, loc: tuple[Any, ...]) -> Path_:
     return tuple(out)
 
 
-_TYPE_CODES = {
-    "missing": "SPEC002",
-    "extra_forbidden": "SPEC001",
-    "string_pattern_mismatch": "SPEC050",
-    "literal_error": "SPEC003",
+_TYPE_CODES: dict[str, Code] = {
+    "missing": SPEC002,
+    "extra_forbidden": SPEC001,
+    "string_pattern_mismatch": SPEC050,
+    "literal_error": SPEC003,
 }
 
 
@@ -100,7 +102,8 @@ def findings_from(exc: ValidationError, doc: Document, root: type[BaseModel], pr
         path = data_path(doc.data, prefix + loc)
         etype = err["type"]
         ctx = err.get("ctx") or {}
-        code = etype if etype[:4].isupper() and etype[4:].isdigit() else _TYPE_CODES.get(etype, "SPEC003")
+        # a descgen error's type is its finding code; pydantic's own types map to SPEC codes
+        code = raisable(etype) if etype[:4].isupper() and etype[4:].isdigit() else _TYPE_CODES.get(etype, SPEC003)
         message = str(ctx.get("message") or err["msg"])
         hint = str(ctx.get("hint") or "")
         key_pos = False
@@ -136,5 +139,5 @@ def findings_from(exc: ValidationError, doc: Document, root: type[BaseModel], pr
         if dedup in seen:
             continue
         seen.add(dedup)
-        out.append(Finding(code, "error", message, hint, subject, where))
+        out.append(code.finding(message, hint, subject, where))
     return out

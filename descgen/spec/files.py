@@ -6,7 +6,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from descgen.core.findings import Finding, InputError, Where
+from descgen.codes.spec import YAML002
+from descgen.core.findings import InputError, Where
 
 
 def expand_specs(paths: Sequence[str]) -> list[str]:
@@ -19,9 +20,7 @@ def expand_specs(paths: Sequence[str]) -> list[str]:
             if not found:
                 raise InputError(
                     [
-                        Finding(
-                            "YAML002",
-                            "error",
+                        YAML002.finding(
                             f"{p} holds no .yaml spec",
                             "name a spec file or a folder of specs",
                             "file",

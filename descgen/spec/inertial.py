@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from descgen.codes.spec import INER010, INER030, INER031, INER032
 from descgen.core import model as m
 from descgen.core.findings import Where
 from descgen.infra.yamlsource import Path_
@@ -37,7 +38,7 @@ def inertial(
     subject = ".".join(map(str, path))
     if not shapes or shapes[0].geometry is None:
         conv.error(
-            "INER010",
+            INER010,
             f"inertial from {spec.from_}, but the link has no {spec.from_} geometry",
             f"add a {spec.from_} primitive or give inertia explicitly",
             subject,
@@ -50,7 +51,7 @@ def inertial(
     tensor_or_none = mass_props.in_link_frame(shape.geometry, mass, shape.origin) if shape.geometry else None
     if tensor_or_none is None:
         conv.error(
-            "INER010",
+            INER010,
             f"cannot compute inertia from a mesh {spec.from_}",
             "give inertia explicitly (from your CAD tool), or use a primitive",
             subject,
@@ -72,7 +73,7 @@ def _finite(
     ):
         return tensor
     conv.error(
-        "INER032",
+        INER032,
         f"the inertia computed from the {spec.from_} shape overflows (not a finite number): "
         "the mass or the shape's size is beyond what a part can have",
         "give the measured mass and size, or the inertia explicitly; widen plausibility: ranges only as far as a "
@@ -104,11 +105,11 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
         except meshes.MeshError as exc:
             problem = f"mesh '{mesh.filename}': {exc}"
     if loaded is None:
-        conv.error("INER031", f"cannot compute inertia from {spec.from_}: {problem}", _GIVE, subject, where)
+        conv.error(INER031, f"cannot compute inertia from {spec.from_}: {problem}", _GIVE, subject, where)
         return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
     if not loaded.facts.watertight:
         conv.error(
-            "INER030",
+            INER030,
             f"cannot compute inertia from {spec.from_}: mesh '{mesh.filename}' is not watertight "
             f"({loaded.facts.open_edges} open edges, or inconsistent winding), so it bounds no solid",
             "close the mesh in your CAD tool (or use its convex hull), or " + _GIVE,
@@ -120,7 +121,7 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
         loaded.vertices * (loaded.facts.unit_meter or 1.0), loaded.faces, spec.mass.si, mesh.scale, origin
     )
     if found is None:
-        conv.error("INER030", f"mesh '{mesh.filename}' bounds no volume", _GIVE, subject, where)
+        conv.error(INER030, f"mesh '{mesh.filename}' bounds no volume", _GIVE, subject, where)
         return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
     com, computed = found
     tensor = _finite(conv, spec, computed, subject, where)

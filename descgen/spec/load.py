@@ -13,6 +13,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from descgen.codes.spec import SPEC003
 from descgen.core.findings import Finding, InputError, errors
 from descgen.core.model import Robot
 from descgen.core.record import record
@@ -73,9 +74,7 @@ def from_document(doc: Document, rules: Rules | None = None, place: _Place | Non
     if not isinstance(doc.data, dict):
         raise InputError(
             [
-                Finding(
-                    "SPEC003",
-                    "error",
+                SPEC003.finding(
                     "a spec is a YAML mapping (name:, links:, joints:, ...)",
                     "see specs/warehouse_arm.yaml",
                     "spec",

@@ -45,7 +45,7 @@ NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
 Name = Annotated[str, StringConstraints(pattern=NAME_PATTERN, max_length=128)]
 """Names descgen or ROS turn into identifiers: the robot (package and file names), parts (Xacro
 macros), controllers (ROS node names), SRDF groups, known poses, hardware params. Plain
-identifiers (see reference/conventions.md)."""
+identifiers (see docs/reference/conventions.md)."""
 
 # Link, joint and frame names are what ROS 2 Jazzy accepts: urdfdom takes any string (unique),
 # tf2 refuses an empty id and a leading '/' (validateFrameId), MoveIt's SRDF trims whitespace, so

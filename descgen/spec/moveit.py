@@ -4,13 +4,13 @@ requires of the rest of the spec (SPEC110-SPEC116).
 MoveIt on Jazzy refuses to time-parameterise a trajectory for a joint without velocity or
 acceleration limits (time_optimal_trajectory_generation.cpp), and a URDF has no
 acceleration attribute, so with ``moveit:`` every joint MoveIt plans for needs
-``limit.acceleration`` in the spec (reference/moveit_config.md §3).
+``limit.acceleration`` in the spec (docs/reference/moveit_config.md §3).
 """
 
 from __future__ import annotations
 
+from descgen.codes.spec import SPEC110, SPEC111, SPEC112, SPEC113, SPEC114, SPEC115, SPEC116
 from descgen.core import model as m
-from descgen.core.findings import Finding
 from descgen.physics.moveit_groups import group_joints, unserved
 from descgen.spec import models as s
 from descgen.spec.convert import Converter
@@ -24,7 +24,7 @@ def moveit(conv: Converter, spec: s.MoveItSpec, robot: m.Robot) -> m.MoveItSetti
     groups = {g.name: g for g in sem.groups} if sem else {}
     if not groups:
         conv.error(
-            "SPEC115",
+            SPEC115,
             "moveit: is set, but the spec has no planning groups",
             "add semantic.groups (e.g. - name: arm, chain: {base: base_link, tip: tool_link}) or remove moveit:",
             "moveit",
@@ -34,7 +34,7 @@ def moveit(conv: Converter, spec: s.MoveItSpec, robot: m.Robot) -> m.MoveItSetti
     for name in spec.kinematics:
         if name not in groups:
             conv.error(
-                "SPEC112",
+                SPEC112,
                 f"moveit.kinematics names unknown group '{name}'",
                 f"groups: {', '.join(groups) or 'none'}",
                 f"group:{name}",
@@ -43,7 +43,7 @@ def moveit(conv: Converter, spec: s.MoveItSpec, robot: m.Robot) -> m.MoveItSetti
     states = {st.name for st in sem.states} if sem else set()
     if spec.initial_state is not None and spec.initial_state not in states:
         conv.error(
-            "SPEC113",
+            SPEC113,
             f"moveit.initial_state names unknown group state '{spec.initial_state}'",
             f"group states: {', '.join(sorted(states)) or 'none'}",
             "moveit:initial_state",
@@ -63,9 +63,7 @@ def moveit(conv: Converter, spec: s.MoveItSpec, robot: m.Robot) -> m.MoveItSetti
     )
     for g, missing in unserved(robot):
         conv.findings.append(
-            Finding(
-                "SPEC114",
-                "warning",
+            SPEC114.finding(
                 f"no controller serves planning group '{g.name}' (joints {', '.join(missing)}): "
                 "MoveIt can plan for it but not execute",
                 "add a ros2_control controller with an action server for these joints "
@@ -89,7 +87,7 @@ def _limits(conv: Converter, robot: m.Robot) -> None:
             lm = j.limit
             if lm is None or lm.velocity is None or lm.velocity <= 0.0:
                 conv.error(
-                    "SPEC111",
+                    SPEC111,
                     f"joint '{j.name}' of planning group '{g.name}' has no velocity limit; "
                     "MoveIt cannot time a trajectory without one",
                     f"add 'limit: {{velocity: <value> {unit}, acceleration: <value> {unit}^2, effort: ...}}' "
@@ -99,7 +97,7 @@ def _limits(conv: Converter, robot: m.Robot) -> None:
                 )
             elif lm.acceleration is None:
                 conv.error(
-                    "SPEC110",
+                    SPEC110,
                     f"joint '{j.name}' of planning group '{g.name}' has no acceleration limit; "
                     "MoveIt on Jazzy refuses to time a trajectory without one (and a URDF cannot hold it)",
                     f"add 'acceleration: <value> {unit}^2' with its source under this joint's limit:",
@@ -108,7 +106,7 @@ def _limits(conv: Converter, robot: m.Robot) -> None:
                 )
             elif lm.acceleration <= 0.0:
                 conv.error(
-                    "SPEC116",
+                    SPEC116,
                     f"joint '{j.name}' has acceleration limit {lm.acceleration:g} {unit.replace('deg', 'rad')}^2; "
                     "a limit is a positive magnitude",
                     f"write the largest acceleration the joint may use, e.g. 'acceleration: 180 {unit}^2'",
@@ -128,7 +126,7 @@ def _positive(conv: Converter, spec: s.MoveItSpec) -> None:
     for path, value in checks:
         if value <= 0.0:
             conv.error(
-                "SPEC116",
+                SPEC116,
                 f"moveit.{'.'.join(path)} is {value:g} (SI); it must be positive",
                 "write a positive value with its unit",
                 "moveit",

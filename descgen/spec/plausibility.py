@@ -3,6 +3,8 @@ the spec so that validation already uses them."""
 
 from __future__ import annotations
 
+from descgen.codes import raisable
+from descgen.codes.spec import SPEC001
 from descgen.core import units
 from descgen.core.findings import Finding
 from descgen.infra.yamlsource import Document, Path_
@@ -19,9 +21,7 @@ def ranges_from(doc: Document) -> tuple[dict[str, units.Range], list[Finding]]:
         p: Path_ = ("plausibility", role)
         if role not in ranges:
             findings.append(
-                Finding(
-                    "SPEC001",
-                    "error",
+                SPEC001.finding(
                     f"unknown plausibility role '{role}'",
                     f"roles: {', '.join(ranges)}",
                     ".".join(map(str, p)),
@@ -39,9 +39,7 @@ def ranges_from(doc: Document) -> tuple[dict[str, units.Range], list[Finding]]:
                     v = abs(units.to_si(bounds[key], r.kind))
                 except units.QuantityError as exc:
                     findings.append(
-                        Finding(
-                            exc.code,
-                            "error",
+                        raisable(exc.code).finding(  # a core QuantityError carries its code as text
                             exc.message,
                             exc.hint,
                             ".".join(map(str, (*p, key))),

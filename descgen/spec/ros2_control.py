@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Collection, Sequence
 
+from descgen.codes.spec import CTRL080, SPEC083, SPEC084, SPEC085, SPEC086, SPEC087, SPEC088, SPEC089
 from descgen.core import model as m
 from descgen.core import units
 from descgen.infra.yamlsource import Path_
@@ -117,7 +118,7 @@ def _joint(conv: Converter, cj: s.ControlJointSpec, p: Path_, block: str) -> m.C
         if st.name == "position" and initial is not None:
             if value is not None:
                 conv.error(
-                    "CTRL080",
+                    CTRL080,
                     f"ros2_control joint '{cj.name}': the initial position is given twice "
                     "(initial_position and the position state's initial_value)",
                     "keep one of them",
@@ -158,7 +159,7 @@ def _sensor(
     if sp.frame is not None:
         if links and sp.frame not in links:
             conv.error(
-                "SPEC083",
+                SPEC083,
                 f"ros2_control sensor '{sp.name}': frame '{sp.frame}' is not a link of the robot",
                 "name a link; a spec sensor's link is <name>_link",
                 f"sensor:{sp.name}",
@@ -189,7 +190,7 @@ def _interfaces(conv: Converter, items: list[s.Iface], path: Path_, owner: str) 
         )
         if any(o.name == iface.name for o in out):
             conv.error(
-                "SPEC084",
+                SPEC084,
                 f"'{owner}' lists interface '{iface.name}' twice",
                 "list each interface once",
                 f"component:{owner}",
@@ -212,7 +213,7 @@ def _unique_components(conv: Converter, rc: Block, path: Path_) -> None:
         for i, item in enumerate(items):
             if item.name in seen:
                 conv.error(
-                    "SPEC084",
+                    SPEC084,
                     f"ros2_control component '{item.name}' is declared twice ({seen[item.name]} and {kind})",
                     "give each joint, sensor and gpio its own name",
                     f"component:{item.name}",
@@ -243,7 +244,7 @@ def _sensor_block_commands(conv: Converter, block: Block, path: Path_) -> None:
     for kind, i, name, count in owners:
         if count:
             conv.error(
-                "SPEC087",
+                SPEC087,
                 f"ros2_control block '{block.name}' is a sensor, but '{name}' has command interfaces; "
                 "a sensor component exports none",
                 "remove the commands, or make the block type: system (or actuator)",
@@ -267,7 +268,7 @@ def _blocks_agree(conv: Converter, specs: list[tuple[Block, Path_]], hardware: l
     for (block, path), hw in zip(specs, hardware, strict=True):
         if block.name in names:
             conv.error(
-                "SPEC086",
+                SPEC086,
                 f"two ros2_control blocks are named '{block.name}'; Jazzy's resource manager refuses "
                 "a duplicated hardware name and loads no hardware",
                 "give each block its own name",
@@ -278,7 +279,7 @@ def _blocks_agree(conv: Converter, specs: list[tuple[Block, Path_]], hardware: l
         for kind, i, name in _components(block):
             if name in owner and owner[name] != block.name:
                 conv.error(
-                    "SPEC085",
+                    SPEC085,
                     f"'{name}' is in ros2_control blocks '{owner[name]}' and '{block.name}'; Jazzy's resource "
                     f"manager refuses the second '{name}/...' interface (already existing key) and loads no hardware",
                     "keep each joint, sensor and gpio in one block",
@@ -291,7 +292,7 @@ def _blocks_agree(conv: Converter, specs: list[tuple[Block, Path_]], hardware: l
             if block.type != "system" and plugin in SYSTEM_ONLY_PLUGINS:
                 at = (*path, "hardware") if where_ == "hardware" else (*path, "hardware", *where_.split("."))
                 conv.error(
-                    "SPEC088",
+                    SPEC088,
                     f"ros2_control block '{block.name}' has type: {block.type}, but {plugin} is a system "
                     "plugin only: Jazzy cannot load it for an actuator or sensor",
                     "make the block type: system (mock and Gazebo hardware are systems), or name the vendor's plugin",
@@ -304,7 +305,7 @@ def _blocks_agree(conv: Converter, specs: list[tuple[Block, Path_]], hardware: l
                 return "variants " + ", ".join(names) if names else "no variants"
 
             conv.error(
-                "SPEC089",
+                SPEC089,
                 f"ros2_control block '{block.name}' declares {listed([v.name for v in hw.variants])}, the first "
                 f"block {listed(first_variants)}; one Xacro argument hardware:= selects every block's variant",
                 "declare the same variants (gazebo, real) under every block's hardware",

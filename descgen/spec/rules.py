@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
+from descgen.codes.spec import SPEC010, SPEC024, SPEC026, SPEC120, SPEC121
 from descgen.core.findings import Finding
 from descgen.infra.yamlsource import Document, Path_
 from descgen.spec import models as s
@@ -34,9 +35,7 @@ def duplicate_semantics(doc: Document, sem: s.SemanticSpec) -> list[Finding]:
         for i, (key, what) in enumerate(entries):
             if key in seen:
                 out.append(
-                    Finding(
-                        "SPEC024",
-                        "error",
+                    SPEC024.finding(
                         f"{what} is declared twice in semantic.{section}",
                         "remove or rename the second one (the SRDF keeps one per name)",
                         f"semantic.{section}.{i}",
@@ -56,9 +55,7 @@ def duplicate_materials(doc: Document, spec: s.RobotSpec) -> list[Finding]:
     for i, mt in enumerate(spec.materials):
         if mt.name in first:
             out.append(
-                Finding(
-                    "SPEC026",
-                    "error",
+                SPEC026.finding(
                     f"material '{mt.name}' is listed twice in materials (first as entry {first[mt.name] + 1})",
                     "remove the second entry or give it another name (urdfdom refuses a repeated material)",
                     f"materials.{i}",
@@ -79,9 +76,7 @@ def missing_sources(doc: Document, spec: s.RobotSpec) -> list[Finding]:
         if isinstance(obj, Measured | Written):
             if not covered and not obj.source and path in doc.value_marks:
                 out.append(
-                    Finding(
-                        "SPEC010",
-                        "error",
+                    SPEC010.finding(
                         f'measured value "{getattr(obj, "text", obj)}" has no source',
                         "add source: <row ID> to the value or to its element, or set require_sources: false",
                         ".".join(map(str, path)),
@@ -125,9 +120,7 @@ def derived_package_name(doc: Document, spec: s.RobotSpec) -> list[Finding]:
     fix = f"add name: {suggested} under package:" if has_package else f"add package: {{name: {suggested}}} to the spec"
     digit = not derived[:1].isalpha()
     return [
-        Finding(
-            "SPEC120" if digit else "SPEC121",
-            "error" if digit else "warning",
+        (SPEC120 if digit else SPEC121).finding(
             f"the package name '{derived}' (<robot>_description, from the robot's name) is not a ROS package "
             f"name: {why} (REP 144)",
             fix,

@@ -7,6 +7,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import replace
 
+from descgen.codes.spec import SPEC100, SPEC101, SPEC125, SPEC126, SPEC127, SRDF010
 from descgen.core import model as m
 from descgen.infra.yamlsource import Path_
 from descgen.spec import models as s
@@ -83,7 +84,7 @@ def _multi_value(conv: Converter, joint: str, jtype: str | None, w: Written, at:
             "floating": "[0 mm, 0 mm, 300 mm, 0, 0, 0, 1]",
         }.get(jtype or "", '"0 deg"')
         conv.error(
-            "SPEC125",
+            SPEC125,
             f"joint '{joint}' ({jtype or 'unknown'}) takes {want}, got {len(items)}",
             f"write e.g. {joint}: {example} (MoveIt's variable order)",
             ".".join(map(str, at)),
@@ -98,7 +99,7 @@ def _multi_value(conv: Converter, joint: str, jtype: str | None, w: Written, at:
             v = _plain(item)
             if v is None:
                 conv.error(
-                    "SPEC127",
+                    SPEC127,
                     f"joint '{joint}' {name} '{item}' is not a plain number",
                     "write the quaternion component without a unit, e.g. 0.7071067811865476",
                     ".".join(map(str, at)),
@@ -111,7 +112,7 @@ def _multi_value(conv: Converter, joint: str, jtype: str | None, w: Written, at:
         norm = sum(c * c for c in out[3:])
         if abs(norm - 1.0) > UNIT_QUATERNION:
             conv.error(
-                "SPEC126",
+                SPEC126,
                 f"joint '{joint}' rotation (rot_x, rot_y, rot_z, rot_w) has squared norm {norm:.12g}, not 1",
                 "write a unit quaternion, e.g. 0, 0, 0, 1 for no rotation; divide each component by the norm",
                 ".".join(map(str, at)),
@@ -172,7 +173,7 @@ def _matrix_settings(conv: Converter, sem: s.SemanticSpec) -> m.MatrixSettings |
     path = ("semantic", "collision_matrix")
     if cm.default_state is not None and cm.default_state not in {g.name for g in sem.group_states}:
         conv.error(
-            "SPEC100",
+            SPEC100,
             f"collision_matrix.default_state names unknown group state '{cm.default_state}'",
             f"group states: {', '.join(g.name for g in sem.group_states) or 'none'}",
             "semantic:collision_matrix",
@@ -181,7 +182,7 @@ def _matrix_settings(conv: Converter, sem: s.SemanticSpec) -> m.MatrixSettings |
     padding = cm.padding.si
     if not 0.0 <= padding <= 0.1:
         conv.error(
-            "SPEC101",
+            SPEC101,
             f"collision_matrix.padding {padding * 1000:g} mm is outside 0 to 100 mm",
             "padding inflates every collision shape; use a few millimetres at most",
             "semantic:collision_matrix",
@@ -202,7 +203,7 @@ def _group_states(conv: Converter, sem: s.SemanticSpec, poses: tuple[m.KnownPose
             kp = by_name.get(gs.pose)
             if kp is None:
                 conv.error(
-                    "SRDF010",
+                    SRDF010,
                     f"group state '{gs.name}' names unknown known pose '{gs.pose}'",
                     f"known poses: {', '.join(by_name) or 'none'}",
                     f"group_state:{gs.name}",

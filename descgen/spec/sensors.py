@@ -13,7 +13,7 @@ from descgen.spec.links import link
 
 # REP 103: the optical frame is z forward, x right, y down relative to the body frame
 # (x forward, y left, z up); as fixed-axis rpy this is (-pi/2, 0, -pi/2). See
-# reference/conventions.md.
+# docs/reference/conventions.md.
 OPTICAL_RPY = (-math.pi / 2, 0.0, -math.pi / 2)
 
 

@@ -34,6 +34,8 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import cast
 
+from descgen.codes import Code
+from descgen.codes.generate import GEN040, GEN041, GEN042, GEN043, GEN044
 from descgen.core.findings import Finding, InputError, Where, errors
 from descgen.core.model import Robot
 from descgen.infra import interruptions
@@ -157,8 +159,8 @@ def ours(package_dir: Path) -> list[str]:
     return sorted({*found, *copies})
 
 
-def _refusal(code: str, message: str, hint: str, path: Path) -> Finding:
-    return Finding(code, "error", message, hint, f"file:{path.name}", Where(str(path)))
+def _refusal(code: Code, message: str, hint: str, path: Path) -> Finding:
+    return code.finding(message, hint, f"file:{path.name}", Where(str(path)))
 
 
 _LINK_HINT = (
@@ -178,13 +180,13 @@ def _unsafe_entries(package_dir: Path) -> list[Finding]:
         target = os.readlink(package_dir)
         return [
             _refusal(
-                "GEN041", f"the package folder {package_dir} is a symbolic link (to {target})", _LINK_HINT, package_dir
+                GEN041, f"the package folder {package_dir} is a symbolic link (to {target})", _LINK_HINT, package_dir
             )
         ]
     if not package_dir.is_dir():
         return [
             _refusal(
-                "GEN041",
+                GEN041,
                 f"the package folder {package_dir} exists but is not a folder",
                 "move that file away; generate writes a folder there",
                 package_dir,
@@ -199,12 +201,12 @@ def _unsafe_entries(package_dir: Path) -> list[Finding]:
                 rel = path.relative_to(package_dir).as_posix()
                 if entry.is_symlink():
                     what = f"{rel} in {package_dir.name} is a symbolic link (to {os.readlink(path)})"
-                    found.append(_refusal("GEN040", what, _LINK_HINT, path))
+                    found.append(_refusal(GEN040, what, _LINK_HINT, path))
                 elif entry.is_dir(follow_symlinks=False):
                     pending.append(path)
                 elif not entry.is_file(follow_symlinks=False):
                     what = f"{rel} in {package_dir.name} is not a regular file (a FIFO, socket or device)"
-                    found.append(_refusal("GEN043", what, "remove it from the package folder", path))
+                    found.append(_refusal(GEN043, what, "remove it from the package folder", path))
     return sorted(found, key=lambda f: f.where.file)
 
 
@@ -228,7 +230,7 @@ def output_root(spec: Path, out_root: Path | None) -> Path | None:
         raise InputError(
             [
                 _refusal(
-                    "GEN042",
+                    GEN042,
                     f"the output root {root} is a symbolic link (to {os.readlink(root)})",
                     "name the output folder with --out, or replace the link with a folder",
                     root,
@@ -331,7 +333,7 @@ def _locked(root: Path) -> Iterator[None]:
             raise InputError(
                 [
                     _refusal(
-                        "GEN044",
+                        GEN044,
                         f"another descgen run is writing into {root}",
                         "wait for it to finish, then run again",
                         root,
@@ -464,7 +466,7 @@ def write_packages(packages: Sequence[tuple[Path, Mapping[str, str | bytes]]]) -
     (root,) = roots
     if os.path.lexists(root) and not root.is_dir():
         raise InputError(
-            [_refusal("GEN042", f"the output root {root} is not a folder", "name a folder with --out", root)]
+            [_refusal(GEN042, f"the output root {root} is not a folder", "name a folder with --out", root)]
         )
     root.mkdir(parents=True, exist_ok=True)
     with _locked(root):

@@ -10,7 +10,6 @@ from the spec, and that every image exists. matplotlib is imported only when dra
 
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 from dataclasses import dataclass
@@ -19,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 from descgen.core.findings import Finding, Where
 from descgen.core.model import KnownPose, Robot
+from descgen.infra import keys
 from descgen.physics import zero_pose
 from descgen.physics.rigid import ORIGIN, apply
 
@@ -123,7 +123,10 @@ def record(robot: Robot) -> str:
     poses = {}
     for kp in robot.known_poses:
         inputs = _inputs(scene(robot, kp))
-        digest = hashlib.sha256(json.dumps(inputs, sort_keys=True).encode()).hexdigest()
+        # the key (descgen/infra/keys.py) of what the image shows: nothing of descgen but the
+        # renderer's version and no library's, since check rebuilds and compares this record
+        # every time (the PNG, which matplotlib's version changes, is never compared)
+        digest = keys.key("pose image", RENDERER_VERSION, inputs, (), keys.NOTHING)
         poses[kp.name] = {
             "image": f"{kp.name}.png",
             "inputs_sha256": digest,

@@ -11,7 +11,7 @@ from descgen.core.model import Robot
 from descgen.physics.rigid import IDENTITY, Rot, rpy_rot
 
 # body (x forward, y left, z up) -> optical (z forward, x right, y down): columns are the
-# optical axes in body coordinates (reference/conventions.md)
+# optical axes in body coordinates (docs/reference/conventions.md)
 REP103: Rot = ((0.0, 0.0, 1.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0))
 
 

@@ -1,7 +1,7 @@
 """MoveIt config package: joint_limits.yaml, moveit_controllers.yaml, kinematics.yaml and
 initial_positions.yaml against the URDF, the SRDF and the ros2_control controllers.
 
-Facts from moveit/moveit2 ``jazzy`` (/work/shared/reference/moveit_config.md): robot_model_loader.cpp
+Facts from moveit/moveit2 ``jazzy`` (docs/reference/moveit_config.md): robot_model_loader.cpp
 (how joint_limits.yaml overrides the URDF), time_optimal_trajectory_generation.cpp (TOTG's
 refusals), moveit_simple_controller_manager.cpp (what a controller entry needs), robot_model.cpp
 and joint_model_group.cpp (group joints, chains), kdl_kinematics_plugin.cpp. The rules stay

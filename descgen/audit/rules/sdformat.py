@@ -1,6 +1,6 @@
 """GEOM040-043: what Gazebo's URDF->SDF conversion (sdformat ``src/parser_urdf.cc``) silently
 changes or drops. Jazzy's Gazebo Harmonic uses sdformat14; the behaviour below is the same in
-sdformat12 (Debian 12), which only logs it at debug level (docs/consumers.md §2).
+sdformat12 (Debian 12), which only logs it at debug level (docs/reference/consumers.md §2).
 
 - ``ReduceFixedJoints``: every fixed joint whose parent is not ``world`` is lumped: the child's
   inertial, visuals and collisions move into the parent, unless ``<gazebo reference="joint">``

@@ -9,8 +9,9 @@ import json
 from pathlib import Path
 from typing import Any
 
+from descgen.codes.control import CTRL034, CTRL035
 from descgen.commands.control.verdict import Outcome
-from descgen.core.findings import Finding, InputError, Where
+from descgen.core.findings import InputError, Where
 from descgen.core.model import Robot
 from descgen.infra.safeio import output_file, output_kind, safe_file_name
 
@@ -74,9 +75,7 @@ def _refuse_unsafe(folder: Path, names: list[str]) -> None:
     if bad:
         raise InputError(
             [
-                Finding(
-                    "CTRL035",
-                    "error",
+                CTRL035.finding(
                     f"{'the evidence folder' if path == folder else path.name + ' in the evidence folder'} is {kind}, "
                     f"not {'a folder' if path == folder or path.name == 'control_run' else 'a regular file'}: "
                     "control writes its evidence only inside the folder named, and wrote nothing",
@@ -122,9 +121,7 @@ def write_evidence(
     except OSError as exc:  # a file in the way, no permission
         raise InputError(
             [
-                Finding(
-                    "CTRL034",
-                    "error",
+                CTRL034.finding(
                     f"cannot create the evidence folder {folder}: {exc.strerror or exc}",
                     "choose another --out",
                     "option",

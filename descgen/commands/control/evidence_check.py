@@ -11,10 +11,10 @@ are compared; every plot the run makes must exist.
 
 The run imports rosbags and takes about half a second, so ``verdict.json`` also records (key
 ``reuse``, see descgen/infra/evidence_hash.py) the hash of the run's inputs (the record, the
-trajectory file, the package's files outside evidence/, descgen's code and the libraries it
-uses) and the hash of what was written (every data file, the recording's bytes, the plot
-names). When both match, ``check`` takes the evidence as current without running it; else it
-runs and compares as described above.
+trajectory file, the package's files outside evidence/, the libraries it uses, descgen's release
+and ``record.FORMAT``: descgen/infra/keys.py) and the hash of what was written (every data
+file, the recording's bytes, the plot names). When both match, ``check`` takes the evidence as
+current without running it; else it runs and compares as described above.
 """
 
 from __future__ import annotations

@@ -8,9 +8,10 @@ import dataclasses
 import math
 from pathlib import Path
 
+from descgen.codes.control import CTRL021
 from descgen.commands.control.manager import ControllerManager
 from descgen.commands.control.system import Hardware, HardwareSet, JointHw, MimicHw, Plant, Trace
-from descgen.core.findings import Finding, InputError, Where
+from descgen.core.findings import InputError, Where
 from descgen.core.model import HardwareBlock, Robot, Ros2Control
 from descgen.physics.hardware_info import active_mimic
 from descgen.read.controllers import read_controllers_text
@@ -35,9 +36,7 @@ def find_package(spec: Path, robot: Robot, given: Path | None) -> Path:
     looked = " or ".join(str(f) for f in tried)
     raise InputError(
         [
-            Finding(
-                "CTRL021",
-                "error",
+            CTRL021.finding(
                 f"no generated package of '{robot.name}' at {looked} "
                 f"(it needs {needed[0].as_posix()} and {needed[1].as_posix()})",
                 f"run descgen generate {spec}"
@@ -56,9 +55,7 @@ def load_system(package: Path, robot: Robot, plant: Plant) -> ControllerManager:
     model, _ = read_urdf_text(expand(xacro, str(xacro)), str(xacro))
     rc = model.ros2_control
     if rc is None:
-        raise InputError(
-            [Finding("CTRL021", "error", f"{xacro} has no <ros2_control> block", "generate first", "file")]
-        )
+        raise InputError([CTRL021.finding(f"{xacro} has no <ros2_control> block", "generate first", "file")])
     controllers, rate, _ = read_controllers_text(
         (package / "config" / "ros2_controllers.yaml").read_text(), str(package / "config" / "ros2_controllers.yaml")
     )

@@ -11,7 +11,7 @@ from typing import Any
 
 from descgen.commands.control.system import Plant
 from descgen.core.model import Robot
-from descgen.infra import evidence_hash
+from descgen.infra import evidence_hash, keys
 from descgen.infra.safeio import MAX_DESCRIPTION_BYTES, read_bounded
 
 RECORD_KEY = "run"
@@ -20,6 +20,11 @@ _DATA = ("lifecycle.jsonl", "lifecycle.md", "interfaces.md", "desired_vs_measure
 # what the run's results depend on besides descgen: the recording's writer and its arrays, the
 # YAML and XML readers and xacro (the package's ros2_control block is expanded and read)
 _TOOLS = ("rosbags", "numpy", "PyYAML", "lxml", "xacro")
+# descgen's part in the evidence (descgen/infra/keys.py EVIDENCE): bump when the run, the plant or
+# what the evidence files hold changes; committed evidence then reads as computed with another
+# descgen and check runs it again. tests/test_evidence_recompute.py runs it again regardless and
+# fails when the committed files differ, so a forgotten bump does not pass CI.
+FORMAT = 1
 
 
 def run_record(package: Path, trajectory: str, duration: float | None, plant: Plant) -> dict[str, Any]:
@@ -44,24 +49,21 @@ def _shown(path: Path, project: Path) -> str:
 
 
 def input_key(package: Path, robot: Robot, record: dict[str, Any]) -> str:
-    """The hash of everything the run and its files are a function of: the spec (the model's
-    limits and tolerances) and the generated package on disk (the run loads its ros2_control
-    block and controllers YAML)."""
+    """The key (descgen/infra/keys.py) of everything the run and its files are a function of:
+    the spec (the model's limits and tolerances), the generated package on disk (the run loads
+    its ros2_control block and controllers YAML), the record and the trajectory, with
+    :data:`FORMAT`, descgen's release and the libraries' versions."""
     path = Path(str(record.get("trajectory")))
     if not path.is_absolute():
         path = project(package) / path
     trajectory = evidence_hash.sha256(path.read_bytes()) if path.is_file() else "missing"
-    return evidence_hash.digest(
-        {
-            "what": "control evidence",
-            **evidence_hash.descgen_identity(),
-            "tools": evidence_hash.versions(*_TOOLS),
-            "spec": robot.spec_hash,
-            "record": record,
-            "trajectory": trajectory,
-            "package": evidence_hash.package_files(package, ("evidence/",)),
-        }
-    )
+    inputs = {
+        "spec": robot.spec_hash,
+        "record": record,
+        "trajectory": trajectory,
+        "package": evidence_hash.package_files(package, ("evidence/",)),
+    }
+    return keys.key("control evidence", FORMAT, inputs, _TOOLS, keys.EVIDENCE)
 
 
 def written_content(folder: Path, verdict: dict[str, Any]) -> str:

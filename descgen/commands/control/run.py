@@ -6,13 +6,14 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from descgen.codes.control import CTRL022, CTRL030, CTRL033
 from descgen.commands.control.load import load_system
 from descgen.commands.control.manager import GripperActionController, JointTrajectoryController, Point
 from descgen.commands.control.record import run_record
 from descgen.commands.control.system import Plant
 from descgen.commands.control.trajectory import Trajectory
 from descgen.commands.control.verdict import Outcome
-from descgen.core.findings import Finding, InputError
+from descgen.core.findings import InputError
 from descgen.core.model import Robot
 
 DEFAULT_TOLERANCE = {"prismatic": 0.01, "other": math.radians(3)}
@@ -24,9 +25,7 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
     if not isinstance(jtc, JointTrajectoryController | GripperActionController):
         raise InputError(
             [
-                Finding(
-                    "CTRL022",
-                    "error",
+                CTRL022.finding(
                     f"no joint_trajectory_controller or gripper action controller named "
                     f"'{trajectory.controller}' in the controllers file",
                     "name the arm's or the gripper's controller",
@@ -39,9 +38,7 @@ def run(package: Path, robot: Robot, trajectory: Trajectory, duration: float | N
     if foreign or not trajectory.points:
         raise InputError(
             [
-                Finding(
-                    "CTRL033" if foreign else "CTRL030",
-                    "error",
+                (CTRL033 if foreign else CTRL030).finding(
                     f"controller '{trajectory.controller}' does not command {', '.join(foreign)}"
                     if foreign
                     else "the trajectory has no points: nothing would run",

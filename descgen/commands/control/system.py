@@ -1,6 +1,6 @@
 """A model of ros2_control's behaviour on Jazzy, without ROS.
 
-Facts encoded (reference/ros2_control.md, with its sources):
+Facts encoded (docs/reference/ros2_control.md, with its sources):
 - hardware components and controllers are lifecycle nodes: unconfigured (after on_init),
   inactive (on_configure), active (on_activate), finalized (on_shutdown); an ERROR from a
   callback or from read()/write() runs on_error (SUCCESS -> unconfigured, else finalized)
@@ -32,6 +32,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from descgen.codes.control import CTRL032
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.record import record
 
@@ -134,7 +135,7 @@ def plant_faults(items: Iterable[tuple[str, str]], plant: str, robot: Robot) -> 
     controlled = {j.name for j in robot.ros2_control.joints} if robot.ros2_control else set()
 
     def bad(message: str, hint: str) -> None:
-        found.append(Finding("CTRL032", "error", message, hint, "option", Where("<command line>")))
+        found.append(CTRL032.finding(message, hint, "option", Where("<command line>")))
 
     for joint, kind in items:
         shown = ascii(f"{joint}:={kind}")

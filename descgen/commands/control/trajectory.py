@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from descgen.codes import Code, raisable
+from descgen.codes.control import CTRL020, CTRL030, CTRL031
 from descgen.commands.control.manager import Point
 from descgen.core import units
 from descgen.core.findings import Finding, InputError, Where
@@ -38,9 +40,9 @@ class _Problems:
         self.found: list[Finding] = []
 
     def __call__(
-        self, where: tuple[str | int, ...], message: str, hint: str, code: str = "CTRL020", key: bool = False
+        self, where: tuple[str | int, ...], message: str, hint: str, code: Code = CTRL020, key: bool = False
     ) -> None:
-        self.found.append(Finding(code, "error", message, hint, "trajectory", self.doc.where(where, key=key)))
+        self.found.append(code.finding(message, hint, "trajectory", self.doc.where(where, key=key)))
 
 
 def read_trajectory(path: Path, robot: Robot) -> Trajectory:
@@ -68,7 +70,7 @@ def read_trajectory(path: Path, robot: Robot) -> Trajectory:
 def _joints(data: dict[str, Any], robot: Robot, bad: _Problems) -> list[str] | None:
     raw = data.get("joints")
     if not isinstance(raw, list) or not raw:
-        bad(("joints",), "joints: expected a non-empty list of joint names", "e.g. joints: [elbow_joint]", "CTRL030")
+        bad(("joints",), "joints: expected a non-empty list of joint names", "e.g. joints: [elbow_joint]", CTRL030)
         return None
     ok = True
     for i, name in enumerate(raw):
@@ -85,7 +87,7 @@ def _joints(data: dict[str, Any], robot: Robot, bad: _Problems) -> list[str] | N
 def _points(data: dict[str, Any], joints: list[str] | None, robot: Robot, bad: _Problems) -> list[Point]:
     raw = data.get("points")
     if raw is None or raw == []:
-        bad(("points",), "the trajectory has no points: nothing would run", "add at least one point", "CTRL030")
+        bad(("points",), "the trajectory has no points: nothing would run", "add at least one point", CTRL030)
         return []
     if not isinstance(raw, list):
         bad(("points",), "points: expected a list of points", "write points as a YAML list")
@@ -110,7 +112,7 @@ def _points(data: dict[str, Any], joints: list[str] | None, robot: Robot, bad: _
                 ("points", i, "time_from_start"),
                 f"point {i + 1}: time_from_start {t:g} s is not after the previous point's {last:g} s",
                 "list points in increasing time",
-                "CTRL031",
+                CTRL031,
             )
         last = t if t is not None else last
         values = _positions(p, i, joints, robot, bad)
@@ -126,7 +128,7 @@ def _time(p: dict[str, Any], i: int, bad: _Problems) -> float | None:
     try:
         return units.duration(p["time_from_start"], 0.0, MAX_DURATION_S)
     except units.QuantityError as exc:
-        bad(("points", i, "time_from_start"), f"time_from_start: {exc.message}", exc.hint, exc.code)
+        bad(("points", i, "time_from_start"), f"time_from_start: {exc.message}", exc.hint, raisable(exc.code))
         return None
 
 
@@ -153,5 +155,5 @@ def _positions(
         try:
             values.append(units.to_si(value, kind))
         except units.QuantityError as exc:
-            bad(("points", i, "positions", k), exc.message, exc.hint, exc.code)
+            bad(("points", i, "positions", k), exc.message, exc.hint, raisable(exc.code))
     return tuple(values) if len(values) == len(joints) else None

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from descgen.codes.control import CTRL011, CTRL012, CTRL013, CTRL014
 from descgen.commands.control.manager import ControllerManager
 from descgen.core.findings import Finding
 
@@ -28,9 +29,7 @@ class Outcome:
         for j, e in self.tracking.items():
             if e > self.tolerance[j]:
                 out.append(
-                    Finding(
-                        "CTRL011",
-                        "error",
+                    CTRL011.finding(
                         f"joint '{j}' tracking error reached {e:.4g} (tolerance "
                         f"{self.tolerance[j]:.4g}): the measured state does not follow the command",
                         "check the joint's direction, encoder offset and whether it moves at all",
@@ -39,9 +38,7 @@ class Outcome:
                 )
         for ev in self.cm.rejected[:1]:
             out.append(
-                Finding(
-                    "CTRL012",
-                    "error",
+                CTRL012.finding(
                     f"{len(self.cm.rejected)} command(s) rejected by limits; first: "
                     f"{ev.joint}/{ev.interface} = {ev.value:.6g} beyond {ev.limit:.6g} at {ev.time:.2f} s",
                     "keep the trajectory inside the joint limits",
@@ -51,9 +48,7 @@ class Outcome:
         for n, c in self.cm.controllers.items():
             if c.state != "active":
                 out.append(
-                    Finding(
-                        "CTRL013",
-                        "error",
+                    CTRL013.finding(
                         f"controller '{n}' never became active (state {c.state})",
                         "see lifecycle.md for the failed transition or claim",
                         f"controller:{n}",
@@ -61,9 +56,7 @@ class Outcome:
                 )
         if self.echo:
             out.append(
-                Finding(
-                    "CTRL014",
-                    "info",
+                CTRL014.finding(
                     "the measured state is the mock hardware echoing the command",
                     "this run does not verify motion; use --plant sim or real hardware",
                     "hardware",

@@ -7,7 +7,7 @@ so nothing is lost and one block is never written twice.
 
 generate adds what the description leaves to ros2_control's defaults: command ``min``/``max``
 from the URDF joint limits (Jazzy only tightens limits with them, so equal values change
-nothing: reference/ros2_control.md section 3) and a state ``initial_value`` (0, GenericSystem's
+nothing: docs/reference/ros2_control.md section 3) and a state ``initial_value`` (0, GenericSystem's
 default for a NaN joint state). Those additions are listed (IMP022) and the round trip allows
 exactly them, nothing else (:func:`block_differences`).
 """
@@ -22,16 +22,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
 from lxml import etree
 
+from descgen.codes.importer import IMP020, IMP021, IMP022, IMP023, IMP024, IMP025, IMP031, IMP032
 from descgen.commands.importer.spec import SpecWriter, number
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.infra.safeio import read_bounded
 from descgen.physics import derive
-from descgen.read.controllers import load_substituted
+from descgen.read import params
+from descgen.read.controllers import Parsed, manager_view, parse_substituted
 from descgen.spec.convert import EFFORT, POSITION, VELOCITY
 from descgen.spec.models import CALIBRATABLE, INTERFACE_PATTERN, NAME_PATTERN
 
@@ -46,11 +47,7 @@ _ONE_LINE = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]")
 _JOINT_IFACES = ("position", "velocity", "acceleration", "effort")
 _PARAM_IFACES = ("position", "velocity", "effort")  # the spec knows their units per joint type
 _DATA_TYPES = ("double", "bool", "float32", "uint8", "int8", "uint16", "int16", "uint32", "int32")
-DEFAULT_UPDATE_RATE = 100  # Hz, controller_manager's default (reference/ros2_control.md section 4)
-
-
-def _finding(code: str, severity: str, message: str, hint: str, subject: str, where: Where) -> Finding:
-    return Finding(code, severity, message, hint, subject, where)  # type: ignore[arg-type]
+DEFAULT_UPDATE_RATE = 100  # Hz, controller_manager's default (docs/reference/ros2_control.md section 4)
 
 
 def _elements(e: etree._Element) -> list[etree._Element]:
@@ -360,9 +357,7 @@ class Controllers:
 
 
 def _not_imported(what: str, where: Where, subject: str) -> Finding:
-    return _finding(
-        "IMP024",
-        "warning",
+    return IMP024.finding(
         f"{what} is not imported from the controllers file (the spec has no field for it)",
         "the generated config/ros2_controllers.yaml lacks it; keep it in a file of your own if the robot needs it",
         subject,
@@ -370,17 +365,17 @@ def _not_imported(what: str, where: Where, subject: str) -> Finding:
     )
 
 
-def _substituted(text: str, shown: str, launch_args: Mapping[str, str] | None) -> tuple[Any, list[Finding]]:
-    """The controllers file after its ``$(var NAME)`` launch substitutions (readers/launch_subst.py)
-    and an IMP031 per substitution; InputError (IMP032) when one has no value or is not
-    evaluated: the spec's joint names must be real joints, never the ``$(var ...)`` text."""
-    doc, sites, unresolved = load_substituted(text, shown, launch_args)
+def _parsed(text: str, shown: str, launch_args: Mapping[str, str] | None) -> tuple[Parsed, list[Finding]]:
+    """The controllers file as ROS loads it (descgen/read/params.py), after its ``$(var NAME)``
+    launch substitutions (core/launch_subst.py), and an IMP031 per substitution; InputError
+    (IMP032) when one has no value or is not evaluated: the spec's joint names must be real
+    joints, never the ``$(var ...)`` text; InputError (READ045) for a file ROS refuses."""
+    parsed = parse_substituted(text, shown, launch_args)
+    unresolved = [f for f in parsed.found if f.code in ("CTRL052", "CTRL053")]
     if unresolved:
         raise InputError(
             [
-                Finding(
-                    "IMP032",
-                    "error",
+                IMP032.finding(
                     f"cannot import the controllers: {f.message}",
                     f.hint if f.code == "CTRL052" else "write the value into the file, or import without --controllers",
                     "controllers",
@@ -389,122 +384,124 @@ def _substituted(text: str, shown: str, launch_args: Mapping[str, str] | None) -
                 for f in unresolved
             ]
         )
+    refused = [f for f in parsed.found if f.code == "READ045"]
+    if refused:
+        raise InputError(refused)
     report = [
-        _finding(
-            "IMP031",
-            "info",
+        IMP031.finding(
             f"launch substitution '{site.text}' is imported as {site.value!r}",
             "the spec holds the substituted names; import again with other --launch-arg values for another launch",
             "controllers",
             site.where,
         )
-        for site in sites
+        for site in parsed.sites
     ]
-    return doc, report
+    return parsed, report + [f for f in parsed.found if f.code != "READ045"]
+
+
+def _plain(value: object) -> object:
+    """A parameter value as the spec writes it: a list for a list."""
+    return list(value) if isinstance(value, tuple) else value
 
 
 def read_controllers(path: Path, w: SpecWriter, launch_args: Mapping[str, str] | None = None) -> Controllers:
-    """The controller_manager YAML as the spec's controllers: each controller's type (classic
+    """The controller_manager YAML as the spec's controllers, read as ROS loads it (any form rcl
+    accepts: classic, ``/**:`` blocks, namespaced): each controller's type (classic
     ``controller_manager.ros__parameters.<name>.type`` or ``<name>.ros__parameters.type``) and
     parameters, the update rate; diff_drive's wheel_separation/wheel_radius as ``calibrated``
     values (the file's, with its line: generate writes them instead of the URDF-derived ones)."""
     shown = str(path)
     text = read_bounded(path, "controllers YAML", display=shown).decode("utf-8", "replace")
-    doc, substituted = _substituted(text, shown, launch_args)
-    out = Controllers(text=doc.text, report=substituted)  # the round trip compares the substituted text
-    data = doc.data if isinstance(doc.data, dict) else {}
+    parsed, report = _parsed(text, shown, launch_args)
+    out = Controllers(text=parsed.text, report=report)  # the round trip loads the substituted text again
+    view = manager_view(parsed.params)
 
-    def src(p: tuple[str | int, ...]) -> str:
-        wh = doc.where(p, key=True)
-        return f"{Path(wh.file).name}:{wh.line}"
+    def src(where: Where) -> str:
+        return f"{Path(where.file).name}:{where.line}"
 
-    cm_entry = data.get("controller_manager")
-    cm = cm_entry.get("ros__parameters") if isinstance(cm_entry, dict) else None
-    cm = cm if isinstance(cm, dict) else {}
-    types: dict[str, str] = {}
-    for k, v in cm.items():
-        if k == "update_rate" and isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v):
-            out.update_rate = v
-        elif isinstance(v, dict) and set(v) == {"type"}:
-            types[str(k)] = str(v["type"])
-        else:
-            out.report.append(
-                _not_imported(
-                    f"controller_manager parameter '{k}'",
-                    doc.where(("controller_manager", "ros__parameters", k), True),
-                    "controllers",
+    declared = {d.name for d in view.controllers}
+    # an entry for every node (/**: ros__parameters:) reaches the controller manager too: said once, below
+    everyone = {
+        (p.name, p.key_where) for n in parsed.params.nodes if "*" in n.name.rsplit("/", 1)[-1] for p in n.params
+    }
+    for key, p in view.params.items():
+        if (p.name, p.key_where) in everyone:
+            continue
+        head, dot, tail = key.partition(".")
+        value = p.value
+        if (
+            key == "update_rate"
+            and isinstance(value, int | float)
+            and not isinstance(value, bool)
+            and math.isfinite(value)
+        ):
+            out.update_rate = value
+            continue
+        if dot and tail == "type" and head in declared:
+            continue
+        out.report.append(_not_imported(f"controller_manager parameter '{key}'", p.key_where, "controllers"))
+    for node in parsed.params.nodes:
+        last = node.name.rsplit("/", 1)[-1]
+        if "*" in last:  # an entry for every node (/**: ros__parameters:): the spec has no place for it
+            for p in node.params:
+                out.report.append(
+                    _not_imported(
+                        f"parameter '{p.name}' of every node ({node.name})", p.key_where, f"controller:{node.name}"
+                    )
                 )
-            )
-    params: dict[str, dict[str, Any]] = {}
-    for k, v in data.items():
-        if k == "controller_manager":
-            if set(v or {}) - {"ros__parameters"}:
-                out.report.append(_not_imported("controller_manager's own keys", doc.where((k,), True), "controllers"))
-            continue
-        rp = v.get("ros__parameters") if isinstance(v, dict) else None
-        if not isinstance(rp, dict) or set(v) != {"ros__parameters"}:
-            out.report.append(_not_imported(f"the entry '{k}'", doc.where((k,), True), f"controller:{k}"))
-            continue
-        params[str(k)] = rp
-        if "type" in rp:
-            types.setdefault(str(k), str(rp["type"]))
-    for name in [n for n in params if n not in types]:
-        out.report.append(
-            _not_imported(f"'{name}' (no controller type names it)", doc.where((name,), True), f"controller:{name}")
-        )
+    for name, where in view.untyped:
+        out.report.append(_not_imported(f"'{name}' (no controller type names it)", where, f"controller:{name}"))
     names = []
-    for name, type_ in types.items():
-        if not _NAME.match(name) or not _CONTROLLER_TYPE.match(type_):
+    for d in view.controllers:
+        if not _NAME.match(d.name) or not _CONTROLLER_TYPE.match(d.type):
             out.report.append(
                 _not_imported(
-                    f"controller '{name}' of type '{type_}' (not a plain name/type)",
-                    doc.where((name,), True),
-                    f"controller:{name}",
+                    f"controller '{d.name}' of type '{d.type}' (not a plain name/type)", d.where, f"controller:{d.name}"
                 )
             )
             continue
-        c: Data = {"name": name, "type": type_}
-        own = {k: v for k, v in params.get(name, {}).items() if k != "type"}
+        c: Data = {"name": d.name, "type": d.type}
+        own = params.nested(d.params, d.spaces)
         calibrated: Data = {}
-        for key in CALIBRATABLE.get(type_, ()):
+        for key in CALIBRATABLE.get(d.type, ()):
             v = own.get(key)
             if isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) and v > 0:
-                calibrated[key] = {"value": w.q(float(v), "length"), "source": src((name, "ros__parameters", key))}
+                calibrated[key] = {"value": w.q(float(v), "length"), "source": src(d.params[key].key_where)}
                 del own[key]
         if own:
             c["params"] = own
         if calibrated:
             c["calibrated"] = calibrated
-        c["source"] = src((name,) if name in data else ("controller_manager", "ros__parameters", name))
+        c["source"] = src(d.where)
         out.data.append(c)
-        names.append(name)
+        names.append(d.name)
     out.names = tuple(names)
     return out
 
 
-def _controllers_view(doc: Any, names: tuple[str, ...]) -> dict[str, Any]:
-    """yaml.safe_load data -> {update_rate, name: (type, params)} for the named controllers:
-    the type read where either form puts it, key order not data."""
-    doc = doc if isinstance(doc, dict) else {}
-    cm = (doc.get("controller_manager") or {}).get("ros__parameters") or {}
-    out: dict[str, Any] = {"update_rate": cm.get("update_rate")}
+def _controllers_view(text: str, file: str, names: tuple[str, ...]) -> dict[str, Any]:
+    """A controllers file as ROS loads it -> {update_rate, name: (type, params)} for the named
+    controllers: whichever form declares them, key order not data."""
+    view = manager_view(parse_substituted(text, file).params)
+    rate = view.params.get("update_rate")
+    out: dict[str, Any] = {"update_rate": rate.value if rate is not None else None}
+    by_name = {d.name: d for d in view.controllers}
     for n in names:
-        own = dict((doc.get(n) or {}).get("ros__parameters") or {})
-        type_ = (cm.get(n) or {}).get("type", own.get("type"))
-        own.pop("type", None)
-        out[n] = (type_, own)
+        d = by_name.get(n)
+        out[n] = (d.type, {k: p.value for k, p in d.params.items()}) if d is not None else (None, {})
     return out
 
 
 def controllers_differences(
     original_text: str, written_text: str, imported: Controllers, diff_drive: set[str]
 ) -> list[str]:
-    """The imported parts of the original file against the generated one, both read with
-    yaml.safe_load. Normalised: where ``type`` stands, key order, 0.1 = 0.10 (YAML numbers);
-    allowed additions: update_rate 100 when the file has none, and diff_drive's
-    wheel_separation/wheel_radius (derived from the URDF) when the file has none."""
-    a = _controllers_view(yaml.safe_load(original_text), imported.names)
-    b = _controllers_view(yaml.safe_load(written_text), imported.names)
+    """The imported parts of the original file against the generated one, both read as ROS loads
+    them (rcl's parser, rclcpp's node matching). Normalised: where ``type`` stands, which form
+    declares the controllers, key order, 0.1 = 0.10; allowed additions: update_rate 100 when the
+    file has none, and diff_drive's wheel_separation/wheel_radius (derived from the URDF) when
+    the file has none."""
+    a = _controllers_view(original_text, "controllers (imported)", imported.names)
+    b = _controllers_view(written_text, "controllers (generated)", imported.names)
     out = []
     rate = a["update_rate"] if a["update_rate"] is not None else DEFAULT_UPDATE_RATE
     if rate != b["update_rate"]:
@@ -552,9 +549,7 @@ def import_control(
     if problems:
         return Imported(
             report=[
-                _finding(
-                    "IMP021",
-                    "info",
+                IMP021.finding(
                     f"ros2_control block '{b.get('name', '')}' stays in passthrough: {p}",
                     "generate writes it back unchanged; move it into ros2_control: by hand once the spec can say it",
                     f"ros2_control:{b.get('name', '')}",
@@ -578,9 +573,7 @@ def import_control(
     args = ", ".join(f"{k}:={v}" for k, v in sorted(xacro_args.items())) or "no --xacro-arg"
     for b in blocks:
         out.report.append(
-            _finding(
-                "IMP020",
-                "info",
+            IMP020.finding(
                 f"ros2_control block '{b.get('name', '')}' is imported with hardware "
                 f"{(b.findtext('hardware/plugin') or '').strip()}: the variant the description expands to with {args}",
                 "a Xacro that chooses its hardware by an argument has other variants; import with those "
@@ -591,9 +584,7 @@ def import_control(
         )
         if added := additions(b, robot):
             out.report.append(
-                _finding(
-                    "IMP022",
-                    "info",
+                IMP022.finding(
                     f"generate writes {len(added)} interface param(s) that block '{b.get('name', '')}' leaves to "
                     f"ros2_control's defaults: {', '.join(added[:6])}{' ...' if len(added) > 6 else ''}",
                     "command min/max equal the URDF limits (Jazzy only tightens with them); initial_value is 0 "
@@ -604,9 +595,7 @@ def import_control(
             )
     if rate is None:
         out.report.append(
-            _finding(
-                "IMP023",
-                "info",
+            IMP023.finding(
                 f"the controller manager's update_rate is not given; the spec says {DEFAULT_UPDATE_RATE} Hz, "
                 "controller_manager's default",
                 "write the rate your hardware runs at in ros2_control.update_rate",
@@ -620,9 +609,7 @@ def import_control(
             missing = [k for k in CALIBRATABLE.get(c["type"], ()) if k not in c.get("calibrated", {})]
             if missing:
                 out.report.append(
-                    _finding(
-                        "IMP025",
-                        "info",
+                    IMP025.finding(
                         f"controller '{c['name']}': the file gives no {'/'.join(missing)}; generate writes "
                         "the values derived from the URDF",
                         "state measured values under calibrated: if the robot has them",

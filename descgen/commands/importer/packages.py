@@ -20,6 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from descgen.codes.importer import IMP012, IMP014
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
 from descgen.meshes.paths import PACKAGE_NAME, project_root, split_package_uri
@@ -66,9 +67,7 @@ def package_paths(
 
 
 def _outside(pkg: str, folder: Path, project: Path) -> Finding:
-    return Finding(
-        "IMP012",
-        "info",
+    return IMP012.finding(
         f"package '{pkg}' (named by package:// meshes) is in {folder}, outside the spec's project "
         f"{project}, so the spec does not record it (package_paths: stay inside the project)",
         f"pass --package-path {folder} to validate, generate and check; the generated package references "
@@ -93,9 +92,7 @@ def package_name(robot: m.Robot, where: Where) -> tuple[str | None, list[Finding
         else f"'{derived}' is not a ROS package name: {rep144_problem(derived)} (REP 144)"
     )
     return name, [
-        Finding(
-            "IMP014",
-            "info",
+        IMP014.finding(
             f"the generated package is named '{name}' (package.name): {why}",
             "rename it under package: if you like (a REP 144 name that no other package has); the robot keeps its name",
             "package",

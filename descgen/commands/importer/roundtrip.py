@@ -15,6 +15,7 @@ from typing import Any
 from lxml import etree
 
 from descgen.audit.spec import load_spec_text
+from descgen.codes.importer import IMP001
 from descgen.commands.importer import control
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
@@ -71,9 +72,7 @@ def model_differences(ours: m.Robot, back: m.Robot) -> list[str]:
 
 
 def _finding(message: str, where: Where) -> Finding:
-    return Finding(
-        "IMP001",
-        "error",
+    return IMP001.finding(
         f"round trip differs: {message}",
         "the imported spec does not give back this robot; nothing was written (please report it)",
         "import",
@@ -107,7 +106,8 @@ def prove(
     back, _ = read_urdf_text(urdf.encode("utf-8"), urdf_name)
     messages = model_differences(dataclasses.replace(ours, ros2_control=None), back)
     found = [_finding(msg, where) for msg in messages]
-    found += [dataclasses.replace(f, code="IMP001") for f in yourdfpy_compare(ours, urdf, urdf_name)]
+    # the proof's differences (GEN030, errors) re-coded as the import's round trip
+    found += [IMP001.finding(f.message, f.hint, f.subject, f.where) for f in yourdfpy_compare(ours, urdf, urdf_name)]
     imported = ctl is not None and ctl.data is not None
     found += [_finding(msg, where) for msg in passthrough_differences(ours.passthrough, urdf, imported)]
     if ctl is not None and ctl.data is not None:

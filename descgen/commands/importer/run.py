@@ -16,6 +16,20 @@ from typing import Any
 import yaml
 from lxml import etree
 
+from descgen.codes.importer import (
+    IMP002,
+    IMP003,
+    IMP004,
+    IMP005,
+    IMP011,
+    IMP013,
+    IMP026,
+    IMP027,
+    IMP029,
+    IMP033,
+    IMP034,
+    IMP035,
+)
 from descgen.commands.importer import control, variants
 from descgen.commands.importer.packages import package_name, package_paths, with_package_name
 from descgen.commands.importer.poses import known_poses
@@ -65,10 +79,6 @@ class Imported:
     variants: Variants | None = None
 
 
-def _finding(code: str, severity: str, message: str, hint: str, subject: str, where: Where) -> Finding:
-    return Finding(code, severity, message, hint, subject, where)  # type: ignore[arg-type]
-
-
 def read(path: Path, options: Options) -> tuple[bytes, str, tuple[Where | None, ...] | None]:
     """The URDF document of ``path`` (a Xacro is expanded in the sandbox), its display name and,
     for a Xacro, where each element of the expanded document was written."""
@@ -78,9 +88,7 @@ def read(path: Path, options: Options) -> tuple[bytes, str, tuple[Where | None, 
     if kind == "spec":
         raise InputError(
             [
-                _finding(
-                    "IMP002",
-                    "error",
+                IMP002.finding(
                     "this is already a descgen spec",
                     "import reads a URDF or a Xacro; a spec needs no import",
                     "file",
@@ -145,9 +153,7 @@ def _continuous_limits(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
         joints.append(dataclasses.replace(j, limit=dataclasses.replace(lm, lower=None, upper=None)))
         shown = ", ".join(f"{k}={v:g} rad" for k, v in (("lower", lm.lower), ("upper", lm.upper)) if v is not None)
         report.append(
-            _finding(
-                "IMP026",
-                "info",
+            IMP026.finding(
                 f"continuous joint '{j.name}' limit {shown} is left out: no consumer applies it to a continuous joint",
                 "nothing to do; make the joint revolute if it really stops at these angles",
                 f"joint:{j.name}",
@@ -157,7 +163,7 @@ def _continuous_limits(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     return dataclasses.replace(robot, joints=tuple(joints)), report
 
 
-def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
+def _finite_states(robot: m.Robot, srdf: tuple[bytes, str]) -> tuple[m.Robot, list[Finding]]:
     """Group-state values the spec cannot hold (several numbers for a joint that is no planar or
     floating virtual joint, or unreadable ones): each one left out is reported (IMP011), with
     the value as the SRDF writes it. A virtual joint's list is kept (``GroupState.multi``)."""
@@ -166,15 +172,13 @@ def _finite_states(robot: m.Robot, srdf: Path) -> tuple[m.Robot, list[Finding]]:
     dropped = [(s, n) for s in sem.states for n, v in s.values if not math.isfinite(v)]
     report = []
     if dropped:
-        root = parse_xml(read_bounded(srdf, "SRDF"), str(srdf))
+        root = parse_xml(*srdf)
         for s, n in dropped:
             je = root.find(f"group_state[@name={_quoted(s.name)}]/joint[@name={_quoted(n)}]")
             raw = je.get("value", "") if je is not None else ""
-            where = Where(str(srdf), line_of(je)) if je is not None else s.where
+            where = Where(srdf[1], line_of(je)) if je is not None else s.where
             report.append(
-                _finding(
-                    "IMP011",
-                    "warning",
+                IMP011.finding(
                     f"group state '{s.name}' joint '{n}' value '{raw}' is not kept: the spec holds one number per "
                     "joint, or a list for a planar/floating virtual joint (this one is neither, or unreadable)"
                     + ("" if _finite(s) else "; the state has no other value, so it is left out"),
@@ -205,15 +209,15 @@ def _quoted(text: str) -> str:
     return "concat(" + ', "\'", '.join(f"'{p}'" for p in text.split("'")) + ")"
 
 
-def _semantic(srdf: Path, robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
-    semantic, name, found = read_srdf_text(read_bounded(srdf, "SRDF"), str(srdf))
+def _semantic(srdf: tuple[bytes, str], robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+    semantic, name, found = read_srdf_text(*srdf)
     return dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name)), found
 
 
 def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Variants | None = None) -> Imported:
     """Read ``path`` and write its spec text; the round trip is :func:`prove`. With
     ``structured``, cameras and repeated parts are written as ``sensors:`` and ``parts:``."""
-    from descgen.read.description import audit
+    from descgen.read.description import audit, srdf_bytes
 
     data, shown, sources = read(path, opts.description)
     root = parse_xml(data, shown)
@@ -225,8 +229,9 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     )
     robot, report = _continuous_limits(robot)
     if opts.description.srdf is not None:
-        robot, _ = _semantic(opts.description.srdf, robot)
-        robot, more_states = _finite_states(robot, opts.description.srdf)
+        srdf = srdf_bytes(opts.description)  # an .srdf.xacro expanded, as the audit reads it
+        robot, _ = _semantic(srdf, robot)
+        robot, more_states = _finite_states(robot, srdf)
         report += more_states
     kept, refused = passthrough.collect(root, located.get)
     writer = SpecWriter(opts.units, source_name)
@@ -247,9 +252,7 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     report += ctl.report
     robot = dataclasses.replace(robot, passthrough=tuple(k.xml for k in kept), ros2_control=None)
     report += [
-        _finding(
-            "IMP003",
-            "info",
+        IMP003.finding(
             f"<{k.tag}> is kept verbatim in passthrough: (the spec has no field for it)",
             "review it in the spec; generate writes it back unchanged",
             f"passthrough:{k.tag}",
@@ -258,9 +261,7 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
         for k in kept
     ]
     report += [
-        _finding(
-            "IMP004",
-            "warning",
+        IMP004.finding(
             f"<{k.tag}> is not kept: {passthrough.problem(k.xml)}",
             "it is left out of the spec; add what it means by hand if the robot needs it",
             f"passthrough:{k.tag}",
@@ -318,9 +319,7 @@ def _refuse_too_large(robot: m.Robot, shown: str, text: str | None = None) -> No
 def _too_large(why: str, where: Where) -> InputError:
     return InputError(
         [
-            _finding(
-                "IMP035",
-                "error",
+            IMP035.finding(
                 f"the description is too large to import: {why}",
                 "split the description into smaller robots; nothing was written",
                 "import",
@@ -337,9 +336,7 @@ def _with_variants(ctl: control.Imported, hv: Variants, where: Where) -> control
         why = next((f.message for f in ctl.report if f.code == "IMP021"), "it stays in passthrough:")
         raise InputError(
             [
-                _finding(
-                    "IMP029",
-                    "error",
+                IMP029.finding(
                     f"the hardware variants cannot be imported: {why}",
                     "import one variant (--xacro-arg) and keep the block in passthrough:, or simplify the block",
                     "ros2_control",
@@ -364,9 +361,7 @@ def expand_variants(path: Path, opts: ImportOptions) -> tuple[ImportOptions, Var
     if kind_of(path) != "xacro":
         raise InputError(
             [
-                _finding(
-                    "IMP027",
-                    "error",
+                IMP027.finding(
                     "--variant selects Xacro arguments, but this is not a Xacro",
                     "leave --variant out for a URDF",
                     "option",
@@ -429,9 +424,7 @@ def _not_imported(
             for c in e:
                 if isinstance(c.tag, str) and c.tag not in allowed:
                     out.append(
-                        _finding(
-                            "IMP004",
-                            "warning",
+                        IMP004.finding(
                             f"<{c.tag}> inside {tag} '{e.get('name', '')}' is not kept (the spec has no field for it)",
                             "add what it means by hand if the robot needs it",
                             f"{tag}:{e.get('name', '')}",
@@ -440,9 +433,7 @@ def _not_imported(
                     )
     if options.controllers is not None and not control_imported:
         out.append(
-            _finding(
-                "IMP005",
-                "warning",
+            IMP005.finding(
                 "the controllers YAML is not imported: <ros2_control> stays in passthrough:, so the "
                 "controllers stay in their own file",
                 "keep using your ros2_controllers.yaml beside the generated package",
@@ -576,9 +567,7 @@ def _proved(imported: Imported) -> Outcome:
 
 
 def _unstructured(n: int, where: Where) -> Finding:
-    return _finding(
-        "IMP013",
-        "info",
+    return IMP013.finding(
         f"repeated parts and cameras are written as plain links and joints: as parts:/sensors: the round trip "
         f"differed at {n} place(s)",
         "nothing is lost; group them by hand if you want, and let validate and check prove it",
@@ -598,9 +587,7 @@ def refuse_unsafe_output(path: Path) -> None:
     if kind is not None:
         raise InputError(
             [
-                _finding(
-                    "IMP033",
-                    "error",
+                IMP033.finding(
                     f"-o names {kind}, not a regular file; import writes a spec only as a regular file "
                     "and never replaces anything else (--force included)",
                     "name a new file, or a regular file with --force",
@@ -624,9 +611,7 @@ def write_spec(path: Path, text: str) -> None:
     except OSError as exc:  # a file in the way of the folder, no permission, a read-only disk
         raise InputError(
             [
-                _finding(
-                    "IMP034",
-                    "error",
+                IMP034.finding(
                     f"cannot write the spec there: {exc.strerror or exc}",
                     "choose another -o file",
                     "option",

@@ -16,6 +16,8 @@ from typing import Any
 
 from lxml import etree
 
+from descgen.codes import Code
+from descgen.codes.importer import IMP027, IMP028, IMP029, IMP030
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import first_difference, parse
 from descgen.spec.models import GZ_PLUGIN, MOCK_PLUGIN
@@ -37,8 +39,8 @@ class Expanded:
     blocks: tuple[etree._Element, ...]  # its <ros2_control> blocks
 
 
-def _error(code: str, message: str, hint: str, subject: str, where: Where) -> InputError:
-    return InputError([Finding(code, "error", message, hint, subject, where)])
+def _error(code: Code, message: str, hint: str, subject: str, where: Where) -> InputError:
+    return InputError([code.finding(message, hint, subject, where)])
 
 
 def shown(v: Variant) -> str:
@@ -51,10 +53,10 @@ def check_set(variants: tuple[Variant, ...]) -> None:
     hint = "e.g. --variant mock:use_mock_hardware:=true --variant real:use_mock_hardware:=false"
     if len(set(names)) != len(names):
         twice = next(n for n in names if names.count(n) > 1)
-        raise _error("IMP027", f"--variant {twice} is given twice", "give each variant once; " + hint, "option", _CL)
+        raise _error(IMP027, f"--variant {twice} is given twice", "give each variant once; " + hint, "option", _CL)
     if len(variants) < 2 or "mock" not in names:
         raise _error(
-            "IMP027",
+            IMP027,
             f"--variant gives {', '.join(names)}: the spec's hardware variants need a mock variant and at least one "
             "other (gazebo or real)",
             "add --variant mock:<the args that select mock_components/GenericSystem>; " + hint,
@@ -90,7 +92,7 @@ def same_robot(first: Expanded, other: Expanded, where: Where) -> None:
         diff = "no <ros2_control> block: there is no hardware to vary"
     if diff is not None:
         raise _error(
-            "IMP028",
+            IMP028,
             f"variants {shown(first.variant)} and {shown(other.variant)} are not the same robot apart from the "
             f"<ros2_control> hardware: {diff}",
             "the spec's hardware variants change only the hardware plugin and its params; import each "
@@ -124,7 +126,7 @@ def hardware(ex: tuple[Expanded, ...], where: Where) -> dict[str, dict[str, Any]
             ok, why = allowed[e.variant.name]
             if not ok(plugin):
                 raise _error(
-                    "IMP029",
+                    IMP029,
                     f"variant {shown(e.variant)} gives ros2_control block '{name}' the hardware '{plugin}': {why}",
                     "pass the arguments that select that hardware, or name the variant after the hardware it selects",
                     f"ros2_control:{name}",
@@ -146,9 +148,7 @@ def block_xml(ex: Expanded) -> tuple[str, ...]:
 
 
 def report(ex: tuple[Expanded, ...], where: Where) -> Finding:
-    return Finding(
-        "IMP030",
-        "info",
+    return IMP030.finding(
         "ros2_control hardware imported for the variants " + ", ".join(shown(e.variant) for e in ex) + "; the "
         "generated Xacro selects them with hardware:=" + "|".join(e.variant.name for e in ex),
         "the robot is the same in every variant (checked); launch with hardware:=<variant> instead of these arguments",

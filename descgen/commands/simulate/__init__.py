@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from descgen.codes.simulate import SIM009, SIM014, SIM015, SIM016, SIM017
 from descgen.commands.simulate import gravity
-from descgen.commands.simulate.codes import finding
 from descgen.commands.simulate.compile import compile_robot, silent_changes
 from descgen.commands.simulate.mujoco_urdf import emit
 from descgen.core.findings import Finding, InputError, Where
@@ -62,8 +62,7 @@ def require_mujoco() -> None:
     except ImportError:
         raise InputError(
             [
-                finding(
-                    "SIM009",
+                SIM009.finding(
                     "descgen simulate needs the mujoco package, which is not installed",
                     "pip install 'descgen[sim]' (or pip install 'mujoco>=3')",
                 )
@@ -99,8 +98,7 @@ def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
         there = ", ".join(dict.fromkeys(names)) or "none (the description has no known poses or SRDF states)"
         raise InputError(
             [
-                finding(
-                    "SIM014",
+                SIM014.finding(
                     f"--pose {name!a} is no known pose or SRDF group state",
                     f"poses: {there}",
                     where=Where("<command line>"),
@@ -171,8 +169,7 @@ def simulate(robot: Robot, settings: Settings, description: Path | None, package
     if why:
         raise InputError(
             [
-                finding(
-                    "SIM017",
+                SIM017.finding(
                     f"{robot.name} is too large to simulate: {why}",
                     "simulate a smaller description (fewer links or moving joints), or fewer --seconds when the "
                     "run's work is past its bound (the bounds keep a run within about 15 s; docs/security.md)",
@@ -212,8 +209,7 @@ def simulate(robot: Robot, settings: Settings, description: Path | None, package
     held = gravity.damped(model, data, held)
     if not held and not free:
         found.append(
-            finding(
-                "SIM016",
+            SIM016.finding(
                 "nothing moves: no one-DOF joint to hold and a fixed base",
                 "use --base floor for a mobile robot",
                 f"robot:{robot.name}",
@@ -239,8 +235,7 @@ def simulate(robot: Robot, settings: Settings, description: Path | None, package
 
 def _excluded(robot: Robot, pairs: list[tuple[str, str]]) -> Finding:
     said = ", ".join(f"{a}/{b}" for a, b in pairs)
-    return finding(
-        "SIM015",
+    return SIM015.finding(
         f"{len(pairs)} pair(s) of bodies touch at the pose and are excluded from contact: {said}",
         "a MuJoCo consumer needs the same <contact><exclude> pairs (or smaller collision shapes)",
         f"robot:{robot.name}",

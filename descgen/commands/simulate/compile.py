@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from descgen.commands.simulate.codes import finding
+from descgen.codes.simulate import SIM001, SIM002, SIM003, SIM004, SIM005, SIM006, SIM007
 from descgen.commands.simulate.mujoco_urdf import Emitted
 from descgen.core.findings import Finding
 from descgen.core.model import WITH_LIMITS, Inertia, Inertial, Robot
@@ -44,23 +44,21 @@ def _refusal(robot: Robot, message: str) -> tuple[Finding, str | None]:
     welded = sorted(robot.body_of(body) - {body}) if body else []
     with_links = f" (with the fused link(s) {', '.join(welded)})" if welded else ""
     if "mjMINVAL" in message:
-        return finding(
-            "SIM001",
+        return SIM001.finding(
             f"MuJoCo refuses body {body}{with_links}: {first}",
             "give every moving link a positive mass and a positive-definite inertia",
             subject,
             where,
         ), body
     if "A + B >= C" in message:
-        return finding(
-            "SIM002",
+        return SIM002.finding(
             f"MuJoCo refuses body {body}{with_links}: {first}",
             "principal moments must satisfy A + B >= C; recompute the tensor",
             subject,
             where,
         ), body
-    return finding(
-        "SIM003", f"MuJoCo refused the model: {' '.join(message.split())}", "fix the element named", subject, where
+    return SIM003.finding(
+        f"MuJoCo refused the model: {' '.join(message.split())}", "fix the element named", subject, where
     ), None
 
 
@@ -115,8 +113,7 @@ def _fused(robot: Robot, bodies: set[str | None]) -> list[Finding]:
         return []
     names = ", ".join(lk.name for lk in gone)
     return [
-        finding(
-            "SIM004",
+        SIM004.finding(
             f"{len(gone)} link(s) on fixed joints are merged into their parent body: {names}",
             'expected for frames; add <mujoco><compiler fusestatic="false"/></mujoco> if a consumer needs them '
             "as bodies",
@@ -133,8 +130,7 @@ def _visuals(robot: Robot) -> list[Finding]:
     bare = [lk.name for lk in robot.links if lk.visuals and not lk.collisions]
     also = f"; link(s) with visuals but no collision are invisible there: {', '.join(bare)}" if bare else ""
     return [
-        finding(
-            "SIM005",
+        SIM005.finding(
             f"MuJoCo discards all {count} visual(s) and shows the collision shapes{also}",
             'add <mujoco><compiler discardvisual="false"/></mujoco> to see the visuals in MuJoCo',
             f"robot:{robot.name}",
@@ -160,8 +156,7 @@ def _mass_from_geometry(robot: Robot, model: Any, bodies: set[str | None]) -> li
         extra = float(model.body_mass[b]) - declared
         where_to = "" if owner == lk.name else f" (fused into {owner})"
         out.append(
-            finding(
-                "SIM006",
+            SIM006.finding(
                 f"link {lk.name} has no <inertial>; MuJoCo gives it {extra:.6g} kg from its collision shapes "
                 f"at 1000 kg/m^3{where_to}, urdfdom and RViz treat it as massless",
                 "give the link an <inertial> with its measured mass",
@@ -195,8 +190,7 @@ def _unlimited(robot: Robot, model: Any) -> list[Finding]:
             continue
         why = f"lower {j.show(lm.lower or 0.0)} > upper {j.show(lm.upper or 0.0)}" if inverted else "only one bound"
         out.append(
-            finding(
-                "SIM007",
+            SIM007.finding(
                 f"joint {j.name}: {why}; MuJoCo makes the joint unlimited (sdformat swaps the bounds instead)",
                 "write both bounds with lower <= upper",
                 j.subject,

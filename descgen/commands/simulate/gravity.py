@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from descgen.commands.simulate.codes import finding
+from descgen.codes.simulate import SIM010, SIM011, SIM012, SIM013
 from descgen.core.findings import Finding
 from descgen.core.model import ONE_DOF, ROTATING, Joint, Robot
 
@@ -274,8 +274,7 @@ def verdict(robot: Robot, held: list[Servo], trace: Trace, seconds: float) -> li
     subject, where = f"robot:{robot.name}", robot.where
     if not trace.finite:
         out.append(
-            finding(
-                "SIM010",
+            SIM010.finding(
                 f"the state became NaN or infinite after {trace.steps * TIMESTEP:.3g} s of the gravity run",
                 "check the masses and inertias of the moving links, and the joints' damping",
                 subject,
@@ -285,8 +284,7 @@ def verdict(robot: Robot, held: list[Servo], trace: Trace, seconds: float) -> li
     if trace.warnings:
         said = ", ".join(f"{k} ×{n}" for k, n in sorted(trace.warnings.items()))
         out.append(
-            finding(
-                "SIM011",
+            SIM011.finding(
                 f"MuJoCo warned during the gravity run: {said}",
                 "a bad acceleration means the simulation blew up and was reset; check masses, inertias and damping",
                 subject,
@@ -297,8 +295,7 @@ def verdict(robot: Robot, held: list[Servo], trace: Trace, seconds: float) -> li
         out += _drifts(robot, held, trace)
     if trace.tilt_deg > TIP_DEG:
         out.append(
-            finding(
-                "SIM013",
+            SIM013.finding(
                 f"the free base tilted {trace.tilt_deg:.3g} deg (limit {TIP_DEG:g} deg) within {seconds:g} s: "
                 "the robot tips over",
                 "the centre of mass must stay over the support of wheels and casters; check masses and their origins",
@@ -326,8 +323,7 @@ def _drifts(robot: Robot, held: list[Servo], trace: Trace) -> list[Finding]:
         )
         held_by = f"effort {s.effort:g}" if s.effort is not None else "no effort limit"
         out.append(
-            finding(
-                "SIM012",
+            SIM012.finding(
                 f"joint {s.joint} {what} under gravity, held by a PD servo (kp {s.kp:.4g}, {held_by})",
                 "check the masses this joint carries and its effort limit",
                 j.subject,

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from descgen.commands.simulate.codes import finding
+from descgen.codes.simulate import SIM008
 from descgen.core.findings import Finding
 from descgen.core.model import Collision, Joint, Link, Mesh, Robot, Visual
 from descgen.infra.safeio import read_bounded
@@ -60,6 +60,25 @@ def resolve_mesh(name: str, description: Path | None, package_paths: Sequence[Pa
         return None
 
 
+def _collada_as_stl(path: Path) -> tuple[bytes | None, str | None]:
+    """A COLLADA mesh as a binary STL in metres, for MuJoCo, which reads no COLLADA: read as the
+    audit reads it (descgen/meshes/load.py: trimesh and pycollada, DTDs refused), its
+    ``<unit meter>`` applied as RViz and Gazebo apply it (the URDF's ``scale`` is applied after,
+    by MuJoCo). Returns (bytes, None), or (None, why not)."""
+    import trimesh
+
+    from descgen.meshes.load import MeshError, load
+
+    try:
+        loaded = load(path)
+    except MeshError as exc:
+        return None, f"is a COLLADA file that cannot be read ({exc})"
+    unit = loaded.facts.unit_meter or 1.0
+    stl = trimesh.Trimesh(loaded.vertices * unit, loaded.faces, process=False).export(file_type="stl")
+    assert isinstance(stl, bytes)  # binary STL (trimesh's "stl" exporter)
+    return stl, None
+
+
 class _Writer:
     def __init__(self, robot: Robot, description: Path | None, package_paths: Sequence[Path]) -> None:
         self.robot = robot
@@ -71,14 +90,18 @@ class _Writer:
     def mesh_asset(self, link: Link, shape: Collision, mesh: Mesh) -> str | None:
         path = resolve_mesh(mesh.filename, self.description, self.package_paths)
         why = None
+        converted: bytes | None = None
         if path is None:
             why = "is not a file inside the description's package or a --package-path folder"
+        elif path.suffix.lower() == ".dae":
+            converted, why = _collada_as_stl(path)
         elif path.suffix.lower() not in MESH_FORMATS:
-            why = f"is a {path.suffix or 'extensionless'} file; MuJoCo reads only {', '.join(MESH_FORMATS)}"
+            why = (
+                f"is a {path.suffix or 'extensionless'} file; MuJoCo reads only {', '.join(MESH_FORMATS)}, and COLLADA"
+            )
         if path is None or why is not None:
             self.out.findings.append(
-                finding(
-                    "SIM008",
+                SIM008.finding(
                     f"link {link.name}: collision mesh {mesh.filename!a} {why}; the shape is left out of the "
                     "MuJoCo model, so it neither collides nor adds inertia there",
                     "give --package-path the folder holding the package, or convert the mesh to STL or OBJ",
@@ -88,8 +111,10 @@ class _Writer:
             )
             return None
         if path not in self.names:
-            self.names[path] = f"descgen_mesh_{len(self.names)}{path.suffix.lower()}"
-            self.out.assets[self.names[path]] = read_bounded(path, "mesh", MAX_MESH_BYTES)
+            suffix = ".stl" if converted is not None else path.suffix.lower()
+            self.names[path] = f"descgen_mesh_{len(self.names)}{suffix}"
+            data = converted if converted is not None else read_bounded(path, "mesh", MAX_MESH_BYTES)
+            self.out.assets[self.names[path]] = data
         return self.names[path]
 
     def link(self, root: etree._Element, lk: Link) -> None:

@@ -17,12 +17,13 @@ transform. Outcomes:
 from __future__ import annotations
 
 import itertools
-import struct
 from collections import Counter, deque
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from descgen.codes import Code
+from descgen.codes.recording import BAG001, BAG002, BAG010, BAG012, BAG013, BAG014
 from descgen.commands.tf.buffer import BufferCore, TransformError
 from descgen.core.findings import Finding, InputError, Where
 from descgen.infra.progress import counting
@@ -76,8 +77,8 @@ def shown(name: str, limit: int = 80) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def _unusable(code: str, path: Path, message: str, hint: str) -> InputError:
-    return InputError([Finding(code, "error", message, hint, "file", Where(str(path)))])
+def _unusable(code: Code, path: Path, message: str, hint: str) -> InputError:
+    return InputError([code.finding(message, hint, "file", Where(str(path)))])
 
 
 def _one_line(exc: BaseException) -> str:
@@ -91,18 +92,18 @@ def _bag_folder(path: Path) -> Path:
     if path.is_file() and (path.parent / "metadata.yaml").is_file():
         path = path.parent  # the storage file or metadata.yaml inside a recording
     if not path.exists():
-        raise _unusable("BAG014", path, "no such recording", hint)
+        raise _unusable(BAG014, path, "no such recording", hint)
     if not path.is_dir():
-        raise _unusable("BAG014", path, "is a file, not a rosbag2 folder", hint)
+        raise _unusable(BAG014, path, "is a file, not a rosbag2 folder", hint)
     meta = path / "metadata.yaml"
     if not meta.exists():
-        raise _unusable("BAG014", path, "holds no metadata.yaml, so it is not a rosbag2 folder", hint)
+        raise _unusable(BAG014, path, "holds no metadata.yaml, so it is not a rosbag2 folder", hint)
     if not meta.is_file():
-        raise _unusable("BAG014", meta, "is not a regular file", hint)
+        raise _unusable(BAG014, meta, "is not a regular file", hint)
     size = meta.stat().st_size
     if size > MAX_METADATA:
         raise _unusable(
-            "BAG014", meta, f"is {size / 1e6:.1f} MB; a rosbag2 metadata.yaml is at most {MAX_METADATA >> 20} MB", hint
+            BAG014, meta, f"is {size / 1e6:.1f} MB; a rosbag2 metadata.yaml is at most {MAX_METADATA >> 20} MB", hint
         )
     return path
 
@@ -115,7 +116,7 @@ def _open(path: Path) -> Any:
         reader = open_reader(bag)
     except Exception as exc:  # rosbags raises ReaderError, YAML and OS errors on unusable input
         raise _unusable(
-            "BAG001",
+            BAG001,
             path,
             f"cannot read the recording: {_one_line(exc)}",
             "give a rosbag2 folder (metadata.yaml with .mcap or .db3)",
@@ -125,23 +126,6 @@ def _open(path: Path) -> Any:
 
 def _stamp(header: Any) -> int:
     return int(header.stamp.sec) * 1_000_000_000 + int(header.stamp.nanosec)
-
-
-_HEADER_LE, _HEADER_BE = struct.Struct("<iII"), struct.Struct(">iII")
-
-
-def _raw_header(raw: bytes) -> tuple[int, str]:
-    """(stamp ns, frame_id) of a CDR message whose first field is a std_msgs/Header, read
-    straight from the bytes: a sensor message is looked up by its header alone, and
-    deserializing a whole CameraInfo or image costs many times more. Layout: 4 bytes of
-    encapsulation (byte 1 says the byte order), int32 sec, uint32 nanosec, uint32 length
-    of frame_id with its NUL, the characters."""
-    if len(raw) < 16 or raw[0] != 0 or raw[1] > 1:
-        raise ValueError("not a CDR message")
-    sec, nanosec, size = (_HEADER_LE if raw[1] else _HEADER_BE).unpack_from(raw, 4)
-    if not 1 <= size <= len(raw) - 16 or raw[15 + size] != 0:
-        raise ValueError("header frame_id runs past the message")
-    return sec * 1_000_000_000 + nanosec, raw[16 : 15 + size].decode()
 
 
 @dataclass
@@ -250,9 +234,7 @@ def audit(
         if missing:
             raise InputError(
                 [
-                    Finding(
-                        "BAG002",
-                        "error",
+                    BAG002.finding(
                         f"topic {shown(missing[0])} is not in the recording",
                         "list topics with `ros2 bag info`",
                         "file",
@@ -263,13 +245,12 @@ def audit(
         for c in chosen:
             if not _has_header(ts, c.topic, c.msgtype):
                 raise _unusable(
-                    "BAG013",
+                    BAG013,
                     path,
                     f"topic {shown(c.topic)} ({shown(c.msgtype)}) has no header to look up",
                     "name a sensor topic whose messages have a std_msgs/Header",
                 )
         tf_conns = [c for c in connections if c.topic in TF_TOPICS]
-        header_first = {c.msgtype: _header_first(ts, c.msgtype) for c in chosen}
         read = tf_conns + chosen
         total = sum(int(getattr(c, "msgcount", 0) or 0) for c in read) or None
         with counting(total, path.name, "msg", show_progress) as step:
@@ -278,9 +259,9 @@ def audit(
                 topic = conn.topic
                 if topic in TF_TOPICS:
                     replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
-                elif header_first[conn.msgtype]:
-                    replay.sensor(topic, log_ns, *_raw_header(raw))
                 else:
+                    # rosbags decodes the whole message: reading the header from the bytes by hand was
+                    # 2% of a 10-minute audit (benchmarks/bench_tf.py), not worth a second CDR reader
                     header = getattr(ts.deserialize_cdr(raw, conn.msgtype), "header")  # noqa: B009
                     replay.sensor(topic, log_ns, _stamp(header), header.frame_id)
                 since += 1
@@ -293,7 +274,7 @@ def audit(
         raise
     except Exception as exc:  # a corrupt recording
         raise _unusable(
-            "BAG001", path, f"cannot read the recording: {_one_line(exc)}", "check the recording's files"
+            BAG001, path, f"cannot read the recording: {_one_line(exc)}", "check the recording's files"
         ) from None
     finally:
         reader.close()
@@ -309,19 +290,12 @@ def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
     )
 
 
-def _header_first(ts: Any, msgtype: str) -> bool:
-    """Whether a std_msgs/Header is the message's first field (so _raw_header can read it)."""
-    fields = getattr(ts.types.get(msgtype), "__dataclass_fields__", {})
-    first = next(iter(fields.values()), None)
-    return first is not None and first.name == "header" and "std_msgs/msg/Header" in str(first.type).replace("__", "/")
-
-
 def _check_lookups(path: Path, target: str, topics: tuple[str, ...], lookups: int, frames: set[str]) -> None:
     """Refuse an audit that passed without looking anything up."""
     if not lookups:
         what = f"the topics {', '.join(shown(t) for t in topics)} hold" if topics else "the recording has"
         raise _unusable(
-            "BAG010",
+            BAG010,
             path,
             f"nothing to look up: {what} no sensor messages with a header",
             "name a recorded sensor topic with --topic (/tf, /tf_static and /joint_states are not looked up)",
@@ -329,7 +303,7 @@ def _check_lookups(path: Path, target: str, topics: tuple[str, ...], lookups: in
     if target not in frames:
         known = ", ".join(shown(f, 40) for f in sorted(frames)[:8]) + (", ..." if len(frames) > 8 else "")
         raise _unusable(
-            "BAG012",
+            BAG012,
             path,
             f"--target frame '{shown(target)}' appears nowhere in the recording (frames: {known})",
             "name a frame of the transform tree, e.g. odom or base_link",
@@ -367,25 +341,13 @@ def _audit_one(path: Path, kwargs: dict[str, Any]) -> tuple[Report | None, tuple
         return None, exc.findings
 
 
-def audit_all(
-    paths: list[Path], target: str, jobs: int = 1, show_progress: bool = False, **kwargs: Any
-) -> list[Report]:
-    """Audit several recordings, ``jobs`` of them at a time in separate processes (each is
-    one CPU-bound stream). Every recording is audited; the input errors of all of them are
-    raised together, so one unreadable recording does not hide another's. ``show_progress``:
-    the messages of each recording on a terminal, or the recordings done with ``jobs``."""
-    outcomes = audit_each(paths, target, jobs, show_progress, **kwargs)
-    errors = [f for _, findings in outcomes for f in findings]
-    if errors:
-        raise InputError(errors)
-    return [rep for rep, _ in outcomes if rep is not None]
-
-
 def audit_each(
     paths: list[Path], target: str, jobs: int = 1, show_progress: bool = False, **kwargs: Any
 ) -> list[tuple[Report | None, tuple[Finding, ...]]]:
-    """:func:`audit_all` without raising: for each recording, in order, its report or the input
-    errors that kept it from one, so the readable recordings are reported beside the unreadable."""
+    """Audit several recordings, ``jobs`` of them at a time in separate processes (each is one
+    CPU-bound stream): for each recording, in order, its report or the input errors that kept it
+    from one, so the readable recordings are reported beside the unreadable. ``show_progress``:
+    the messages of each recording on a terminal, or the recordings done with ``jobs``."""
     kwargs["target"] = target
     if jobs <= 1 or len(paths) <= 1:
         outcomes = [_audit_one(p, kwargs | {"show_progress": show_progress}) for p in paths]

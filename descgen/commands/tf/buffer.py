@@ -1,6 +1,6 @@
 """A transform buffer with tf2's BufferCore semantics, in integer nanoseconds.
 
-Encoded from geometry2 (reference/tf2.md; tf2/src/buffer_core.cpp, cache.cpp,
+Encoded from geometry2 (docs/reference/tf2.md; tf2/src/buffer_core.cpp, cache.cpp,
 static_cache.cpp) and checked against Debian's python3-tf2 (the same C++ core) by
 tests/test_tf_buffer.py:
 

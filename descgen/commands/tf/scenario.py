@@ -1,6 +1,6 @@
 """``descgen tf-scenario``: a short rosbag2 recording of a spec's robot, with planted faults.
 
-What a running robot would record (reference/robot_state_publisher.md, ros2_control.md,
+What a running robot would record (docs/reference/robot_state_publisher.md, ros2_control.md,
 rosbag2.md): robot_state_publisher's fixed joints once on /tf_static, joint_state_broadcaster's
 /joint_states at the controller rate and robot_state_publisher's /tf for the movable joints
 stamped with them, diff_drive_controller's odom -> base frame on /tf, and camera headers
@@ -25,8 +25,11 @@ from typing import Any
 
 import numpy as np
 
+from descgen.codes import Code
+from descgen.codes.command import UNIT021
+from descgen.codes.recording import BAG003, BAG011
 from descgen.commands.tf.buffer import quat_from_matrix
-from descgen.core.findings import Finding, InputError, Where
+from descgen.core.findings import InputError, Where
 from descgen.core.model import ONE_DOF, WITH_LIMITS, Robot
 from descgen.physics import mimic
 from descgen.physics.kinematics import joint_transform
@@ -40,18 +43,18 @@ MIN_DURATION_S = 0.1
 MAX_DURATION_S = 600.0
 
 
-def _refuse(code: str, out: Path, message: str, hint: str = "choose another --out") -> InputError:
-    return InputError([Finding(code, "error", message, hint, "option", Where(str(out)))])
+def _refuse(code: Code, out: Path, message: str, hint: str = "choose another --out") -> InputError:
+    return InputError([code.finding(message, hint, "option", Where(str(out)))])
 
 
 def check_out(out: Path) -> None:
     """``out`` must be a new folder in an existing, writable folder."""
     if out.exists() or out.is_symlink():
-        raise _refuse("BAG003", out, f"{out} exists; a recording is written to a new folder")
+        raise _refuse(BAG003, out, f"{out} exists; a recording is written to a new folder")
     parent = out.parent
     if not parent.is_dir():
         what = "is not a folder" if parent.exists() else "does not exist"
-        raise _refuse("BAG011", out, f"cannot write {out}: {parent} {what}")
+        raise _refuse(BAG011, out, f"cannot write {out}: {parent} {what}")
 
 
 @dataclass(frozen=True)
@@ -93,7 +96,7 @@ def write(
     check_out(out)
     if not MIN_DURATION_S <= duration <= MAX_DURATION_S:  # the library is called directly too
         raise _refuse(
-            "UNIT021",
+            UNIT021,
             out,
             f"duration {duration:g} s is outside {MIN_DURATION_S:g} s to {MAX_DURATION_S:g} s",
             "give a shorter or longer --duration",
@@ -101,14 +104,14 @@ def write(
     try:
         staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     except OSError as exc:
-        raise _refuse("BAG011", out, f"cannot write in {out.parent}: {exc.strerror or exc}") from None
+        raise _refuse(BAG011, out, f"cannot write in {out.parent}: {exc.strerror or exc}") from None
     from rosbags.rosbag2 import WriterError
 
     try:
         counts = _write(robot, staging / out.name, faults, duration, storage)
         (staging / out.name).rename(out)
     except (OSError, WriterError) as exc:  # disk full, permissions, out created meanwhile
-        raise _refuse("BAG011", out, f"cannot write {out}: {getattr(exc, 'strerror', None) or exc}") from None
+        raise _refuse(BAG011, out, f"cannot write {out}: {getattr(exc, 'strerror', None) or exc}") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return counts

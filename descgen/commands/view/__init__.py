@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from descgen.codes.command import VIEW001
 from descgen.core.findings import Finding, InputError, Severity, Where
 from descgen.core.model import ONE_DOF, Mesh, Robot
 from descgen.physics import kinematics, mimic
@@ -191,9 +192,7 @@ def require_viser() -> None:
     except ImportError:
         raise InputError(
             [
-                Finding(
-                    "VIEW001",
-                    "error",
+                VIEW001.finding(
                     "descgen view needs viser with its URDF support, which is not installed",
                     "pip install 'descgen[view]' (or: pip install 'viser[urdf]')",
                     "option",

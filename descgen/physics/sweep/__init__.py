@@ -15,8 +15,6 @@ not checked; links without collision geometry are listed, never silently absent.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -26,6 +24,7 @@ from descgen.codes import CODES
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.model import NOWHERE, Robot
 from descgen.core.record import record
+from descgen.infra import keys
 from descgen.physics import collision, derive
 from descgen.physics.sweep.contacts import Run, available, runs, unresolved_meshes
 from descgen.physics.sweep.motion import (
@@ -41,6 +40,7 @@ from descgen.physics.sweep.motion import (
 )
 
 ALGORITHM = "descgen-sweep-1"  # bump when results change: memoised and committed runs are then recomputed
+# (tests/test_evidence_recompute.py sweeps the committed example again and fails on a forgotten bump)
 DEFAULT_STEPS = 36
 MIN_STEPS, MAX_STEPS = 1, 3600
 # The sweep's bounds (SWEEP007, SWEEP008), so that a robot of 10,000 links is a finding in a
@@ -154,12 +154,20 @@ _RUNS: dict[str, tuple[Run, ...]] = {}
 
 def memo_key(robot: Robot, state: str, values: dict[str, float], steps: int, disabled: set[frozenset[str]]) -> str:
     """Only a robot with a sampled matrix is memoised: the matrix's input hash already covers
-    its geometry, joints, meshes and padding, on any machine."""
+    its geometry, joints, meshes and padding, on any machine. The key (descgen/infra/keys.py)
+    names :data:`ALGORITHM`, descgen's release and the libraries that computed the matrix
+    (pinocchio and coal check the sweep's contacts as they checked the matrix's samples)."""
     sem = robot.semantic
     if sem is None or sem.matrix is None:
         return ""
-    key = [ALGORITHM, sem.matrix.input_hash, state, sorted(values.items()), steps, sorted(sorted(p) for p in disabled)]
-    return hashlib.sha256(json.dumps(key).encode("utf-8")).hexdigest()
+    inputs = {
+        "matrix": sem.matrix.input_hash,
+        "state": state,
+        "values": sorted(values.items()),
+        "steps": steps,
+        "disabled": sorted(sorted(p) for p in disabled),
+    }
+    return keys.key("sweep collision runs", ALGORITHM, inputs, dict(sem.matrix.libraries), keys.RELEASE)
 
 
 def remember(key: str, found: Sequence[Run]) -> None:
