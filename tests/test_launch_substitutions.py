@@ -207,3 +207,17 @@ def test_import_with_the_launch_value_proves_and_the_spec_checks(tmp_path: Path)
         extra = [] if command == "validate" else ["--out", tmp_path / "gen", "--package-path", CORPUS]
         done = cli(command, out, *extra, cwd=tmp_path)
         assert done.returncode == 0, (command, done.stderr[-2000:])
+
+
+def test_a_spec_value_that_looks_like_a_substitution_is_just_a_name(tmp_path: Path) -> None:
+    # found by tests/test_fuzz_generate.py: validate let it through as if launch would substitute
+    # it, then generate's proof failed; a spec is never substituted, so it is an unknown joint
+    spec = tmp_path / "specs" / "warehouse_arm.yaml"
+    spec.parent.mkdir()
+    text = (ROOT / "specs" / "warehouse_arm.yaml").read_text()
+    assert "left_wheel_names: [left_wheel_joint]" in text
+    spec.write_text(
+        text.replace("left_wheel_names: [left_wheel_joint]", 'left_wheel_names: ["left_wheel_joint$(env HOME)"]')
+    )
+    ran = cli("validate", spec)
+    assert ran.returncode == 2 and "error[CTRL009]" in ran.stderr and "left_wheel_joint$(env HOME)" in ran.stderr

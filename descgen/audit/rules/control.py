@@ -414,7 +414,9 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
         for key in keys:
             value = c.param(key)
             for i, name in enumerate(_list(value)):
-                if robot.joint(str(name)) is None and not unresolved(name):  # CTRL052/053 stand for it
+                # a controllers file's launch substitution left as written: CTRL052/053 stand for it
+                # (a spec's value is never substituted: there it is a name like any other)
+                if robot.joint(str(name)) is None and (_in_spec(robot) or not unresolved(name)):
                     yield at(
                         "CTRL009",
                         Param(c, key, i if isinstance(value, tuple | list) else None),
