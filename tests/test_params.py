@@ -143,6 +143,7 @@ def test_yaml_text_types_as_rcl_not_as_pyyaml() -> None:
         ("n:\n  ros__parameters:\n    a:\n", 3, "no value"),  # No value at line
         ("n:\n  ros__parameters:\n    a: [1, x]\n", 3, "mixes"),  # Sequence should be of same type
         ("n:\n  ros__parameters:\n    a: [{b: 1}]\n", 3, "list of"),
+        ('n:\n  ros__parameters:\n    "": 1\n', 3, "empty parameter name"),  # No key at line
         ("ros__parameters:\n  a: 1\n", 1, "no node name"),  # There are no node names before
         ("9n:\n  ros__parameters:\n    a: 1\n", 2, "not a valid node name"),
     ],

@@ -49,7 +49,9 @@ def test_an_srdf_xacro_is_expanded_and_its_defect_found(tmp_path: Path) -> None:
     srdf = _write(tmp_path, "arm.srdf.xacro", SRDF_XACRO)
     ran = cli("audit", URDF, "--srdf", srdf)
     assert ran.returncode == 1, ran.stderr
-    assert f"{srdf} (expanded):" in ran.stderr and "error[SRDF002]: state 'home' sets 'elbow_joint'" in ran.stderr
+    # where the state is written (line 8, in the macro) and the call that expanded it (line 14)
+    assert f"{srdf}:8:5: error[SRDF002]: state 'home' sets 'elbow_joint'" in ran.stderr, ran.stderr
+    assert f"in macro called from {srdf}:14:3" in ran.stderr
     # the same --xacro-arg as a URDF Xacro takes: a value inside the limits, no finding
     ok = cli("audit", URDF, "--srdf", srdf, "--xacro-arg", "elbow_home:=1")
     assert "[SRDF002]" not in ok.stderr, ok.stderr

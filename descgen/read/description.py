@@ -97,8 +97,8 @@ def with_given_files(
     if options.srdf is not None:
         from descgen.read.srdf import read_srdf_text
 
-        data, shown = srdf_bytes(options, given)
-        semantic, srdf_name, more = read_srdf_text(data, shown)
+        data, shown, sources = srdf_bytes(options, given)
+        semantic, srdf_name, more = read_srdf_text(data, shown, sources)
         found += more
         robot = dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=srdf_name))
     if options.controllers is not None:
@@ -127,17 +127,20 @@ def with_given_files(
     return robot, found
 
 
-def srdf_bytes(options: Options, given: Mapping[Path, bytes] | None = None) -> tuple[bytes, str]:
-    """The SRDF's bytes and how findings name it: an ``.srdf.xacro`` (MoveIt packages ship them)
-    is expanded in the same sandbox, with the same --xacro-arg values, as a URDF Xacro."""
+def srdf_bytes(
+    options: Options, given: Mapping[Path, bytes] | None = None
+) -> tuple[bytes, str, Sequence[Where | None] | None]:
+    """The SRDF's bytes, how findings name it, and (for an ``.srdf.xacro``, which MoveIt packages
+    ship) where each expanded element was written: it is expanded in the same sandbox, with the
+    same --xacro-arg values, as a URDF Xacro."""
     assert options.srdf is not None
     shown = str(options.srdf)
     if not options.srdf.name.endswith(".xacro"):
-        return _read(options.srdf, "SRDF", given or {}), shown
+        return _read(options.srdf, "SRDF", given or {}), shown, None
     from descgen.read.xacro_file import expand_located
 
     expansion = expand_located(options.srdf, shown, options.xacro_args, options.package_paths, options.trust_xacro)
-    return expansion.xml, f"{shown} (expanded)"
+    return expansion.xml, shown, expansion.sources
 
 
 def _read(path: Path, what: str, given: Mapping[Path, bytes]) -> bytes:

@@ -269,6 +269,10 @@ class _State:
                 _skip(events, key)
                 _skip(events, value)
                 continue
+            if key.value == "":
+                self.error(key, "an empty parameter name: ROS loads no file with one")
+                _skip(events, value)
+                continue
             if isinstance(value, yaml.MappingStartEvent) and len(prefix) >= MAX_DEPTH:
                 self.error(value, f"mappings nested more than {MAX_DEPTH} deep")
                 _skip(events, value)
@@ -309,6 +313,7 @@ class _State:
         if isinstance(value, yaml.SequenceStartEvent):
             items: list[Scalar] = []
             wheres: list[Where] = []
+            refused = False
             for item in events:
                 if isinstance(item, yaml.SequenceEndEvent):
                     break
@@ -316,10 +321,13 @@ class _State:
                     what = "aliases" if isinstance(item, yaml.AliasEvent) else "lists or mappings"
                     self.error(item, f"'{name}' is a list of {what}: ROS loads lists of plain values only")
                     _skip(events, item)
+                    refused = True
                     continue
                 quoted = item.style in ("'", '"')
                 items.append(typed(item.value, quoted, item.tag == "tag:yaml.org,2002:str"))
                 wheres.append(self.where(item))
+            if refused:
+                return None
             if not items:  # rcl keeps it without a value; rclcpp refuses it for each node it reaches
                 self.problems.append(
                     Problem(

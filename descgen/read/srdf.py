@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 from lxml import etree
 
@@ -10,18 +11,23 @@ from descgen.codes.read import READ011, READ042, READ047
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
-from descgen.read.urdf import parse_xml
+from descgen.read.urdf import element_sources, parse_xml
 
 
-def read_srdf_text(data: bytes, file: str) -> tuple[m.Semantic, str, list[Finding]]:
+def read_srdf_text(
+    data: bytes, file: str, sources: Sequence[Where | None] | None = None
+) -> tuple[m.Semantic, str, list[Finding]]:
     """The semantics, the SRDF's robot name, and what could not be read. InputError (READ047)
     for a file that is no SRDF: it would read as an empty one."""
     root = parse_xml(data, file)
     _refuse_non_srdf(root, file)
     found: list[Finding] = []
 
+    # an expanded SRDF Xacro: each element where it was written (descgen/read/xacro_file.py)
+    located = element_sources(root, sources) if sources is not None else {}
+
     def where(e: object) -> Where:
-        return Where(file, line_of(e))  # type: ignore[arg-type]
+        return located.get(e) or Where(file, line_of(e))  # type: ignore[arg-type, call-overload]
 
     groups = tuple(
         m.Group(

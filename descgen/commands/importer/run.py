@@ -163,7 +163,7 @@ def _continuous_limits(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     return dataclasses.replace(robot, joints=tuple(joints)), report
 
 
-def _finite_states(robot: m.Robot, srdf: tuple[bytes, str]) -> tuple[m.Robot, list[Finding]]:
+def _finite_states(robot: m.Robot, srdf: tuple[bytes, str, Any]) -> tuple[m.Robot, list[Finding]]:
     """Group-state values the spec cannot hold (several numbers for a joint that is no planar or
     floating virtual joint, or unreadable ones): each one left out is reported (IMP011), with
     the value as the SRDF writes it. A virtual joint's list is kept (``GroupState.multi``)."""
@@ -172,7 +172,7 @@ def _finite_states(robot: m.Robot, srdf: tuple[bytes, str]) -> tuple[m.Robot, li
     dropped = [(s, n) for s in sem.states for n, v in s.values if not math.isfinite(v)]
     report = []
     if dropped:
-        root = parse_xml(*srdf)
+        root = parse_xml(srdf[0], srdf[1])
         for s, n in dropped:
             je = root.find(f"group_state[@name={_quoted(s.name)}]/joint[@name={_quoted(n)}]")
             raw = je.get("value", "") if je is not None else ""
@@ -209,7 +209,7 @@ def _quoted(text: str) -> str:
     return "concat(" + ', "\'", '.join(f"'{p}'" for p in text.split("'")) + ")"
 
 
-def _semantic(srdf: tuple[bytes, str], robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+def _semantic(srdf: tuple[bytes, str, Any], robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     semantic, name, found = read_srdf_text(*srdf)
     return dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name)), found
 
