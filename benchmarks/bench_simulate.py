@@ -39,19 +39,19 @@ def anchor() -> float:
 
 def main() -> None:
     robot = load_spec(SPEC).robot
-    simulate(robot, Settings(), SPEC)  # warm imports
+    simulate(robot, Settings())  # warm imports
     t_anchor = min(anchor() for _ in range(REPEATS))
     times = []
     for _ in range(REPEATS):
         t0 = time.perf_counter()
-        out = simulate(robot, Settings(pose="ready"), SPEC)
+        out = simulate(robot, Settings(pose="ready"))
         times.append(time.perf_counter() - t0)
         assert not out.failed, out.findings
     print(f"plain MuJoCo, compile + {DEFAULT_SECONDS:g} s of steps (anchor): {t_anchor * 1000:8.1f} ms")
     print(f"descgen simulate, example at 'ready' on the floor, best of {REPEATS}: {min(times) * 1000:8.1f} ms")
     row(f"simulate the example at 'ready', best of {REPEATS} (anchor: plain MuJoCo)", min(times), t_anchor, "warm")
     t0 = time.perf_counter()
-    results = plant_all(robot, Settings(pose="ready"), SPEC)
+    results = plant_all(robot, Settings(pose="ready"))
     t_faults = time.perf_counter() - t0
     caught = sum(r.caught for r in results)
     print(f"planted faults: {caught}/{len(results)} caught in {t_faults * 1000:.1f} ms")

@@ -108,6 +108,7 @@ def test_a_package_that_now_resolves_elsewhere_is_audited_again(
     late, early = tmp_path / "late", tmp_path / "early"
     for root, mesh in ((late, "arm_mm.stl"), (early, "arm_m.stl")):
         (root / "arm_pkg" / "meshes").mkdir(parents=True)
+        (root / "arm_pkg" / "package.xml").write_text("<package format='3'><name>arm_pkg</name></package>")
         shutil.copyfile(GEOM031 / "meshes" / mesh, root / "arm_pkg" / "meshes" / "arm.stl")
     urdf = tmp_path / "arm.urdf"
     urdf.write_text((GEOM031 / "bad.urdf").read_text().replace("meshes/arm_mm.stl", "package://arm_pkg/meshes/arm.stl"))

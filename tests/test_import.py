@@ -99,8 +99,13 @@ def test_import_writes_a_spec_with_sources_that_generates_the_same_robot(tmp_pat
     assert theirs.links[0].visuals[0].origin[2, 3] == 0.48514
 
 
-def test_pass_through_stays_data_through_xacro(tmp_path: Path) -> None:
+def test_pass_through_stays_data_through_xacro(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     import xacro
+    import xacro.substitution_args as sa
+
+    # $(find pkg) is the one substitution left live (docs/packages.md): xacro gives the package's
+    # folder where the robot is launched (ament_index there; a folder here)
+    monkeypatch.setattr(sa, "_eval_find", lambda pkg: f"/opt/ws/share/{pkg}")
 
     spec = tmp_path / "tiny.yaml"
     assert cli("import", _write(tmp_path), "-o", spec).returncode == 0
@@ -113,11 +118,12 @@ def test_pass_through_stays_data_through_xacro(tmp_path: Path) -> None:
         (a,) = original.findall(tag)
         (b,) = root.findall(tag)
         assert etree.tostring(b.find(".//material") if tag == "gazebo" else b.find("type")) is not None
-        assert [(e.tag, dict(e.attrib), (e.text or "").strip()) for e in a.iter()] == [
-            (e.tag, dict(e.attrib), (e.text or "").strip()) for e in b.iter()
-        ]
+        live = {"$(find evil)/x.so": "/opt/ws/share/evil/x.so"}
+        assert [
+            (e.tag, {k: live.get(v, v) for k, v in e.attrib.items()}, (e.text or "").strip()) for e in a.iter()
+        ] == [(e.tag, dict(e.attrib), (e.text or "").strip()) for e in b.iter()]
     assert root.find("gazebo/material").text == "Gazebo/${colour}"  # never evaluated
-    assert root.find("gazebo/plugin").get("filename") == "$(find evil)/x.so"
+    assert root.find("gazebo/plugin").get("filename") == "/opt/ws/share/evil/x.so"
 
 
 def test_existing_output_is_not_replaced_without_force(tmp_path: Path) -> None:
@@ -359,12 +365,42 @@ def test_package_meshes_record_package_paths_relative_to_the_spec(tmp_path: Path
     assert ran.returncode == 0, ran.stderr
     assert yaml.safe_load(spec.read_text())["package_paths"] == ["../vendor"]
     assert cli("validate", spec).returncode == 0
-    # a package outside the spec's project cannot be recorded: said (with the --package-path to pass)
-    elsewhere = tmp_path / "elsewhere" / "m.yaml"
-    (tmp_path / "elsewhere").mkdir()
+    # a package outside the spec's project is recorded relative to the spec all the same (a
+    # workspace beside the project), and every later command finds it without options
+    elsewhere = tmp_path / "elsewhere" / "project" / "specs" / "m.yaml"
     far = cli("import", src, "-o", elsewhere, "--package-path", tmp_path / "vendor")
-    assert "info[IMP012]" in far.stderr and "package_paths" not in elsewhere.read_text()
-    assert f"--package-path {(tmp_path / 'vendor').resolve()}" in far.stderr
+    assert far.returncode == 0, far.stderr
+    assert yaml.safe_load(elsewhere.read_text())["package_paths"] == ["../../../vendor"]
+    assert cli("validate", elsewhere).returncode == 0
+
+
+def test_a_package_the_environment_finds_is_not_recorded(
+    tmp_path: Path, tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # an install prefix as colcon and ament lay it out: share/<pkg> and the ament index's marker,
+    # away from the description (import also looks beside it)
+    prefix = tmp_path_factory.mktemp("ws") / "install"
+    pkg = prefix / "share" / "acme_meshes"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>acme_meshes</name></package>")
+    (pkg / "meshes" / "base.stl").write_text("solid s\nendsolid s\n")
+    marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / "acme_meshes"
+    marker.parent.mkdir(parents=True)
+    marker.write_text("")
+    src = tmp_path / "robot.urdf"
+    src.write_text(
+        '<robot name="m"><link name="base_link"><visual><geometry>'
+        '<mesh filename="package://acme_meshes/meshes/base.stl"/></geometry></visual></link></robot>'
+    )
+    spec = tmp_path / "specs" / "m.yaml"
+    assert cli("import", src, "-o", spec).returncode == 0  # not found: GEOM004 in the audit, spec written
+    assert cli("validate", spec).returncode == 2  # SPEC062: the package is nowhere
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
+    spec.unlink()
+    ran = cli("import", src, "-o", spec)
+    assert ran.returncode == 0, ran.stderr
+    assert "package_paths" not in yaml.safe_load(spec.read_text())  # this machine's install is not the spec's
+    assert cli("validate", spec).returncode == 0  # found again through the sourced environment
 
 
 DEFECTS = """<?xml version="1.0"?>

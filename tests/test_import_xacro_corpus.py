@@ -80,25 +80,29 @@ def _options(case: Case) -> Options:
     )
 
 
-_IMPORTED: dict[str, Outcome] = {}
+_IMPORTED: dict[str, tuple[Outcome, Path]] = {}
 
 
-def _imported(case: Case) -> Outcome:
+def _import(case: Case) -> tuple[Outcome, Path]:
     if case.ident not in _IMPORTED:  # one import per case for the whole module
-        # the spec lives outside this project (tmp_path), so it records no package_paths (IMP012);
-        # generate and check get --package-path, as the issue asks
-        # (a folder of its own: the temp folder itself may hold this repository, e.g. a CI clone
-        # in /tmp, and then the corpus would be inside the spec's project)
-        spec_name = str(Path(tempfile.mkdtemp(prefix="descgen-import-")) / "robot.yaml")
-        _IMPORTED[case.ident] = import_description(
-            CORPUS / case.xacro, ImportOptions(_options(case), spec_name=spec_name)
-        )
+        # the spec lives outside this project, in a folder of its own, and records the corpus
+        # relative to itself (package_paths: may leave the project); generate and check get
+        # --package-path too, which finds the same folder
+        spec_name = Path(tempfile.mkdtemp(prefix="descgen-import-")) / "robot.yaml"
+        outcome = import_description(CORPUS / case.xacro, ImportOptions(_options(case), spec_name=str(spec_name)))
+        _IMPORTED[case.ident] = (outcome, spec_name)
     return _IMPORTED[case.ident]
 
 
+def _imported(case: Case) -> Outcome:
+    return _import(case)[0]
+
+
 def _spec(case: Case, tmp_path: Path) -> Path:
-    spec = tmp_path / "robot.yaml"
-    write_spec(spec, _imported(case).imported.spec_text)
+    """The imported spec, where import meant it to be (its package_paths: are relative to it)."""
+    outcome, spec = _import(case)
+    if not spec.exists():
+        write_spec(spec, outcome.imported.spec_text)
     return spec
 
 
@@ -200,11 +204,12 @@ def test_the_generated_robot_is_the_original(case: Case, tmp_path: Path) -> None
 @pytest.mark.parametrize("case", _params(CASES))
 def test_check_passes_and_audit_agrees(case: Case, tmp_path: Path) -> None:
     spec = _spec(case, tmp_path)
-    ran = cli("check", spec, "--out", tmp_path / "gen", "--package-path", CORPUS, cwd=tmp_path)
+    # no --package-path: the spec records the corpus's folder, relative to itself
+    ran = cli("check", spec, "--out", tmp_path / "gen", cwd=tmp_path)
     if not case.defects:
-        gen = cli("generate", spec, "--out", tmp_path / "gen", "--package-path", CORPUS, cwd=tmp_path)
+        gen = cli("generate", spec, "--out", tmp_path / "gen", cwd=tmp_path)
         assert gen.returncode == 0, gen.stderr[-2000:]
-        ran = cli("check", spec, "--out", tmp_path / "gen", "--package-path", CORPUS, cwd=tmp_path)
+        ran = cli("check", spec, "--out", tmp_path / "gen", cwd=tmp_path)
         assert ran.returncode == 0, ran.stderr[-2000:]
     else:  # the spec fails validate at the defects audit reports on the original
         assert ran.returncode == 2

@@ -318,11 +318,12 @@ def test_unknown_package_own_package_and_fifo_are_refused(tmp_path: Path) -> Non
     )
 
 
-def test_recorded_folders_must_stay_in_the_project(tmp_path: Path) -> None:
+def test_recorded_templates_stay_in_the_project_and_folders_are_relative(tmp_path: Path) -> None:
     spec = SPEC.replace("package_paths: [../vendor]", "package_paths: [../vendor, ../../outside, /usr/share]")
     spec = spec.replace("name: mini_arm\n", "name: mini_arm\ntemplates: ../../tpl\n")
     (tmp_path / "x").mkdir()
-    (tmp_path / "outside").mkdir()  # a real folder, but not in the project x/
+    (tmp_path / "outside").mkdir()  # a real folder outside the project x/: a workspace may lie there
+    (tmp_path / "tpl").mkdir()
     code, found = _validate(tmp_path / "x", spec)
     assert code == 2
 
@@ -330,10 +331,34 @@ def test_recorded_folders_must_stay_in_the_project(tmp_path: Path) -> None:
         line = spec.splitlines()[line_of(spec, needle) - 1]
         return f"specs/arm.yaml:{line_of(spec, needle)}:{line.index(needle) + 1}"
 
+    # templates render the package (code): they stay in the project; an absolute folder is this
+    # machine's only; a package folder outside the project is fine (only packages are read there)
     assert sorted((f["code"], f["where"]) for f in found) == sorted(
-        [("SPEC064", at("../../outside")), ("SPEC064", at("/usr/share")), ("SPEC064", at("../../tpl"))]
+        [("SPEC064", at("/usr/share")), ("SPEC064", at("../../tpl"))]
     )
-    assert [f["msg"].endswith("is an absolute path, so it works on any machine") for f in found].count(True) == 0
+
+
+def test_a_workspace_outside_the_project_is_searched_for_packages_only(tmp_path: Path) -> None:
+    # the gripper package lives in a colcon workspace beside the project: ws/src/<repo>/<pkg>
+    project = tmp_path / "project"
+    make_project(project, SPEC.replace("package_paths: [../vendor]", "package_paths: [../../ws/src]"))
+    repo = tmp_path / "ws" / "src" / "grippers"
+    repo.mkdir(parents=True)
+    (project / "vendor" / "gripper_pkg").rename(repo / "gripper_pkg")
+    r = cli("validate", "specs/arm.yaml", cwd=project)
+    assert r.returncode == 0, r.stderr
+    code, out = generate(project)
+    assert code == 0, out
+    xml = (project / "generated" / PKG / "package.xml").read_text()
+    assert "<exec_depend>gripper_pkg</exec_depend>" in xml
+    # a spec is someone else's data: a folder up to / finds packages, never /etc as package "etc"
+    hostile = SPEC.replace("package_paths: [../vendor]", "package_paths: [" + "../" * 40 + "]").replace(
+        "package://gripper_pkg/meshes/finger.stl", "package://etc/passwd"
+    )
+    (project / "specs" / "arm.yaml").write_text(hostile)
+    r = cli("validate", "specs/arm.yaml", cwd=project)
+    assert r.returncode == 2
+    assert [f["code"] for f in _findings(r.stderr)] == ["SPEC062"], r.stderr
 
 
 def test_two_files_copied_to_one_place_are_refused(tmp_path: Path) -> None:

@@ -95,13 +95,13 @@ def test_example_reports_what_mujoco_changes_silently() -> None:
 @pytest.mark.parametrize("fault", CATALOGUE, ids=lambda f: f.name)
 def test_each_planted_fault_fails_the_run(base: str, fault: object) -> None:
     robot = load_spec(SPEC).robot
-    [result] = plant_all(robot, Settings(pose="ready", base=base), SPEC, catalogue=(fault,))  # type: ignore[arg-type]
+    [result] = plant_all(robot, Settings(pose="ready", base=base), catalogue=(fault,))  # type: ignore[arg-type]
     assert result.applicable and result.caught, result.what
 
 
 def test_com_outside_the_footprint_tips_the_base_and_only_it() -> None:
     robot = load_spec(SPEC).robot
-    [result] = plant_all(robot, Settings(), SPEC, catalogue=tuple(f for f in CATALOGUE if f.name == "com-outside"))
+    [result] = plant_all(robot, Settings(), catalogue=tuple(f for f in CATALOGUE if f.name == "com-outside"))
     assert [f.code for f in result.by] == ["SIM013"]
 
 
@@ -134,7 +134,7 @@ def test_the_emitted_urdf_swings_with_the_hand_computed_period() -> None:
     m, length, ic = 2.0, 0.4, 0.01
     text = pendulum(mass=m, length=length, ic=ic)
     robot, _ = read_urdf_text(text.encode(), "pendulum.urdf")
-    model = mujoco.MjModel.from_xml_string(emit(robot, None).text)
+    model = mujoco.MjModel.from_xml_string(emit(robot).text)
     model.opt.integrator = mujoco.mjtIntegrator.mjINT_RK4
     model.opt.timestep = 0.0005
     data = mujoco.MjData(model)
@@ -232,7 +232,7 @@ def test_a_package_mesh_reaches_mujoco(tmp_path: Path) -> None:
     ran = cli("simulate", path, "--package-path", tmp_path / "ws")
     assert ran.returncode == 0 and "SIM008" not in ran.stderr, ran.stderr
     robot = __import__("descgen.read.description", fromlist=["x"]).load_description(path)[0]
-    emitted = emit(robot, path, [tmp_path / "ws"])
+    emitted = emit(robot)
     model = mujoco.MjModel.from_xml_string(emitted.text, emitted.assets)
     assert model.nmesh == 1 and model.mesh_vertnum[0] == 8  # the hand-written cube's 8 corners
 
@@ -293,7 +293,7 @@ def test_servo_gains_come_from_effort_not_mass() -> None:
 
 
 def test_library_call_is_short_and_fast() -> None:
-    out = simulate(load_spec(SPEC).robot, Settings(seconds=0.5, pose="ready"), SPEC)
+    out = simulate(load_spec(SPEC).robot, Settings(seconds=0.5, pose="ready"))
     assert not out.failed and out.report["steps"] == round(0.5 / gravity.TIMESTEP) and out.report["wall_s"] < 5
 
 

@@ -47,7 +47,7 @@ def test_a_collada_collision_mesh_reaches_mujoco_in_metres(tmp_path: Path) -> No
     path = _write(pkg, _with_mesh("package://bot_description/meshes/cube.dae"))
     ran = cli("simulate", path, "--package-path", tmp_path / "ws")
     assert ran.returncode == 0 and "[SIM008]" not in ran.stderr, ran.stderr
-    emitted = emit(load_description(path)[0], path, [tmp_path / "ws"])
+    emitted = emit(load_description(path)[0])
     model = mujoco.MjModel.from_xml_string(emitted.text, emitted.assets)
     assert model.nmesh == 1 and model.mesh_vertnum[0] == 8
     start = model.mesh_vertadr[0]

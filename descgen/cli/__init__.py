@@ -48,7 +48,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     failed = False
     for path in expand_specs(args.spec):
         try:
-            loaded = load_spec(path, package_paths=tuple(args.package_path or ()))
+            loaded = load_spec(path, package_paths=_packages(args))
         except InputError as exc:
             all_findings.extend(exc.findings)
             per_spec.append((str(path), list(exc.findings), ""))
@@ -76,7 +76,7 @@ def _cmd_generate(args: argparse.Namespace) -> int:
 
     worst = EXIT_OK
     for spec in expand_specs(args.spec):
-        outcome = generate(Path(spec), args.out, args.templates, args.force, tuple(args.package_path or ()), wanted())
+        outcome = generate(Path(spec), args.out, args.templates, args.force, _packages(args), wanted())
         sys.stderr.write(report.text(outcome.findings))
         if outcome.failed:
             print(f"{spec}: nothing written: a check failed", file=sys.stderr)
@@ -105,7 +105,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
                 Path(spec),
                 args.out,
                 args.templates,
-                package_paths=tuple(args.package_path or ()),
+                package_paths=_packages(args),
                 thorough=args.thorough,
             )
         except InputError as exc:
@@ -132,7 +132,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _cmd_report(args: argparse.Namespace) -> int:
     from descgen.commands.generate import check
 
-    outcome = check(Path(args.spec), args.out, write_page=True)
+    outcome = check(Path(args.spec), args.out, write_page=True, package_paths=_packages(args))
     sys.stderr.write(report.text(outcome.findings))
     if outcome.failed:
         print(f"{args.spec}: evidence page not written", file=sys.stderr)
@@ -148,7 +148,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
     from descgen.commands.view import load, require_viser
     from descgen.commands.view.server import start
 
-    robot, urdf = load(Path(args.path), tuple(args.package_path or ()))  # bad input first: exit 2 at the file
+    robot, urdf = load(Path(args.path), _packages(args))  # bad input first: exit 2 at the file
     require_viser()
     viewer = start(robot, urdf, args.host, args.port, Path(args.path).resolve().parent)
     try:  # from here on Ctrl-C stops the server and exits 0
@@ -167,7 +167,7 @@ def _cmd_poses(args: argparse.Namespace) -> int:
     from descgen.audit.spec import load_spec
     from descgen.physics.poses import evaluate, findings
 
-    loaded = load_spec(args.spec)
+    loaded = load_spec(args.spec, package_paths=_packages(args))
     rows = evaluate(loaded.robot)
     found = findings(loaded.robot, rows)
     if args.format == "json":
@@ -199,7 +199,7 @@ def _description_options(args: argparse.Namespace) -> Options:
         args.srdf,
         args.controllers,
         dict(args.xacro_arg or []),
-        tuple(args.package_path or []),
+        _packages(args),
         args.trust_xacro,
         launch_args=dict(args.launch_arg or []),
     )
@@ -332,7 +332,7 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
     from descgen.audit.spec import load_spec
     from descgen.commands.tf.scenario import write
 
-    robot = load_spec(args.spec).robot
+    robot = load_spec(args.spec, package_paths=_packages(args)).robot
     counts = write(robot, args.out, tuple(args.fault or ()), args.duration, args.storage)
     print(f"wrote {args.out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
     return EXIT_OK
@@ -346,7 +346,7 @@ def _cmd_control(args: argparse.Namespace) -> int:
     from descgen.commands.control.system import Plant, plant_faults
     from descgen.commands.control.trajectory import read_trajectory
 
-    robot = load_spec(args.spec).robot
+    robot = load_spec(args.spec, package_paths=_packages(args)).robot
     package = find_package(Path(args.spec), robot, args.package)
     faults = plant_faults(args.plant_fault or [], args.plant, robot)
     trajectory = read_trajectory(args.trajectory, robot)
@@ -467,13 +467,7 @@ def description_options(p: argparse.ArgumentParser) -> None:
         metavar="NAME:=VALUE",
         help="value of a $(var NAME) launch substitution in the controllers YAML (repeatable)",
     )
-    p.add_argument(
-        "--package-path",
-        action="append",
-        type=types.folder,
-        metavar="DIR",
-        help="folder holding ROS packages, for $(find) and package:// (repeatable)",
-    )
+    package_path(p)
     p.add_argument(
         "--trust-xacro",
         action="store_true",
@@ -482,16 +476,27 @@ def description_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def spec_package_path(p: argparse.ArgumentParser) -> None:
-    """--package-path for the commands that load a spec: where its package:// meshes of other
-    packages are (after the spec's package_paths:); only these folders are read besides the spec's."""
+def package_path(p: argparse.ArgumentParser) -> None:
+    """--package-path, the same for every command that reads a spec or a description: where the
+    packages that package:// and $(find) name are, after a spec's package_paths: and before the
+    sourced environment (descgen/meshes/packages.py, docs/packages.md)."""
     p.add_argument(
         "--package-path",
         action="append",
         type=types.folder,
         metavar="DIR",
-        help="folder holding the ROS packages that package:// meshes name (repeatable)",
+        help="folder holding ROS packages (a workspace's src/ or install/, a share/), for package:// and "
+        "$(find) (repeatable; searched after a spec's package_paths:, before AMENT_PREFIX_PATH and ROS_PACKAGE_PATH)",
     )
+
+
+def _packages(args: argparse.Namespace) -> tuple[Path, ...]:
+    """The folders searched for packages, in the one order (descgen/meshes/packages.py)."""
+    import os
+
+    from descgen.meshes.packages import search
+
+    return search(tuple(getattr(args, "package_path", None) or ()), os.environ)
 
 
 def _code_groups() -> list[str]:
@@ -525,7 +530,7 @@ def parser() -> argparse.ArgumentParser:
     v = sub.add_parser("validate", help="check specs (schema, units, whole-model rules); write nothing")
     v.add_argument("spec", nargs="+")
     v.add_argument("--format", choices=("text", "json", "junit"), default="text")
-    spec_package_path(v)
+    package_path(v)
     v.set_defaults(fn=_cmd_validate)
 
     g = sub.add_parser("generate", help="write generated/<robot>_description/ if every check passes")
@@ -535,7 +540,7 @@ def parser() -> argparse.ArgumentParser:
         "--templates", type=types.templates_folder, help="folder of templates that override the defaults by file name"
     )
     g.add_argument("--force", action="store_true", help="overwrite files that were edited by hand")
-    spec_package_path(g)
+    package_path(g)
     g.set_defaults(fn=_cmd_generate)
 
     c = sub.add_parser("check", help="regenerate in memory, compare with the files on disk, run the checks")
@@ -548,7 +553,7 @@ def parser() -> argparse.ArgumentParser:
         default="text",
         help="junit: JUnit XML on stdout (a test suite per spec; the diff of stale files in its failure)",
     )
-    spec_package_path(c)
+    package_path(c)
     c.add_argument(
         "--thorough",
         action="store_true",
@@ -633,6 +638,7 @@ def parser() -> argparse.ArgumentParser:
         help="length of the recording, e.g. '10 s' (a bare number is seconds; at most 10 min)",
     )
     sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
+    package_path(sc)
     sc.set_defaults(fn=_cmd_tf_scenario)
 
     co = sub.add_parser("control", help="run a trajectory through a model of ros2_control (lifecycle, claims, loop)")
@@ -663,6 +669,7 @@ def parser() -> argparse.ArgumentParser:
         help="folder for the evidence (default: the package's evidence/ for a mock run; "
         "a new scratch folder for an experiment with --plant sim or --plant-fault)",
     )
+    package_path(co)
     co.set_defaults(fn=_cmd_control)
 
     si = sub.add_parser("simulate", help="compile the robot with MuJoCo and hold it at a pose under gravity")
@@ -701,6 +708,7 @@ def parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("report", help="write evidence/README.md: every proof of the package on one page")
     rp.add_argument("spec")
     rp.add_argument("--out", type=types.path, help="output root (default: generated/ beside specs/)")
+    package_path(rp)
     rp.set_defaults(fn=_cmd_report)
 
     vw = sub.add_parser("view", help="the robot in the browser: joint sliders, known poses and their measurements")
@@ -709,12 +717,13 @@ def parser() -> argparse.ArgumentParser:
     vw.add_argument(
         "--host", type=types.host, default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)"
     )
-    vw.add_argument("--package-path", action="append", type=types.folder, help="folder holding packages (repeatable)")
+    package_path(vw)
     vw.set_defaults(fn=_cmd_view)
 
     k = sub.add_parser("poses", help="measured known poses against forward kinematics")
     k.add_argument("spec")
     k.add_argument("--format", choices=("text", "json"), default="text")
+    package_path(k)
     k.set_defaults(fn=_cmd_poses)
 
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")

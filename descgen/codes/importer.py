@@ -78,16 +78,18 @@ IMP011 = declare(
       added by hand.""",
 )
 
-IMP012 = declare(
+declare.retired(
     "IMP012",
     "import-package-outside-project",
     "info",
     "A package named by package:// meshes lies outside the imported spec's project, so the spec cannot "
     "record it under package_paths:.",
-    """A spec records package folders relative to itself and inside its project (docs/security.md), so
-      it works on any machine. A package elsewhere is named on the command line instead: pass the folder
-      that holds it as --package-path to validate, generate and check. The generated package references
-      its meshes and depends on it (exec_depend) instead of copying another package's files.""",
+    """A spec recorded package folders only inside its project; a package elsewhere had to be named on
+      the command line of every later command.""",
+    issue=28,
+    why="a spec's package_paths: may now lie outside the project (only packages are read there, each "
+    "inside itself), so import records the folder relative to the spec; a package the sourced "
+    "environment finds is found again the same way on any machine",
 )
 
 IMP013 = declare(

@@ -233,10 +233,12 @@ SPEC062 = declare(
     "SPEC062",
     "mesh-package-unknown",
     "error",
-    "A package:// mesh names a package no folder of the spec's package_paths holds (or the generated one).",
+    "A package:// mesh names a package that package_paths:, --package-path and the sourced environment "
+    "do not hold (or the generated one).",
     """The package must be found to check the file and to depend on it (exec_depend). Record the
-      folder holding the package under package_paths: (relative to the spec); for the robot's own
-      meshes, write a path relative to the spec, which generate copies into the package.""",
+      folder holding the package under package_paths: (relative to the spec), pass --package-path,
+      or source the workspace (docs/packages.md); for the robot's own meshes, write a path
+      relative to the spec, which generate copies into the package.""",
 )
 
 SPEC063 = declare(
@@ -252,10 +254,11 @@ SPEC064 = declare(
     "SPEC064",
     "spec-folder-unusable",
     "error",
-    "A package_paths or templates entry is absolute, leaves the project folder, or is not a folder.",
+    "A package_paths or templates entry is absolute or not a folder, or templates leaves the project folder.",
     """Recorded folders make every command and every machine resolve the same files, so they are
-      relative to the spec; they stay inside the project (the folder holding specs/) so a spec
-      cannot point descgen at the rest of the machine.""",
+      relative to the spec. Package folders may lie outside the project (a workspace beside it):
+      only packages are read there, each inside itself (docs/packages.md). Templates render the
+      package, so they stay inside the project (the folder holding specs/).""",
 )
 
 SPEC065 = declare(

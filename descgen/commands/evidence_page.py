@@ -194,10 +194,10 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
     return lines
 
 
-def _validation(spec: Path, shown: str) -> tuple[list[str], Any]:
+def _validation(spec: Path, shown: str, package_paths: tuple[Path, ...]) -> tuple[list[str], Any]:
     from descgen.audit.spec import load_spec
 
-    loaded = load_spec(spec, display=shown)
+    loaded = load_spec(spec, display=shown, package_paths=package_paths)
     text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
     ok = not any(f.severity == "error" for f in loaded.findings)
     lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
@@ -298,13 +298,19 @@ def _control(package: Path) -> tuple[list[str], list[str]]:
 
 
 def _transcript(
-    spec: Path, shown: str, check_out: tuple[str, str], unchanged: int, simulate: bool, robot: Any
+    spec: Path,
+    shown: str,
+    check_out: tuple[str, str],
+    unchanged: int,
+    simulate: bool,
+    robot: Any,
+    package_paths: tuple[Path, ...],
 ) -> list[str]:
     from descgen.audit.spec import load_spec
 
     # what `descgen validate SPEC` prints (cli._cmd_validate): the findings on stderr, then the
     # one-line verdict; tests/test_evidence_page.py holds it to the command's real output
-    loaded = load_spec(spec)
+    loaded = load_spec(spec, package_paths=package_paths)
     validated = report.text(loaded.findings) + cli_format.validated(str(spec), loaded.robot) + "\n"
     steps = [
         (f"descgen validate {shown}", validated.replace(str(spec), shown)),
@@ -322,7 +328,7 @@ def _transcript(
     for cmd, out in steps:
         shell += [f"$ {cmd}", *out.rstrip("\n").splitlines()]
     # MuJoCo's digits and its presence vary by machine: check leaves this part out (and skips the run)
-    shell += ["<!-- volatile -->", *(_simulate(spec, shown) if simulate else []), "<!-- /volatile -->"]
+    shell += ["<!-- volatile -->", *(_simulate(spec, shown, package_paths) if simulate else []), "<!-- /volatile -->"]
     images = [*(pose_images.image_rel(kp.name) for kp in robot.known_poses), pose_images.SIDECAR]
     wrote = [f"wrote {rel}" for rel in images]
     shell += [f"$ descgen report {shown}", *wrote, f"wrote {PAGE}"]
@@ -331,14 +337,14 @@ def _transcript(
     return lines
 
 
-def _simulate(spec: Path, shown: str) -> list[str]:
+def _simulate(spec: Path, shown: str, package_paths: tuple[Path, ...]) -> list[str]:
     from descgen.commands.simulate import Settings, simulate_description
 
     lines = [f"$ descgen simulate {shown} --pose ready"]
     try:
         from descgen.read.description import Options
 
-        outcome = simulate_description(spec, Options(None, None, {}, (), False), Settings(pose="ready"))
+        outcome = simulate_description(spec, Options(package_paths=package_paths), Settings(pose="ready"))
     except InputError as exc:
         return lines + report.text(exc.findings).replace(str(spec), shown).splitlines()
     text = cli_format.simulate_text(shown, outcome.report)
@@ -383,11 +389,12 @@ def build(
     simulate: bool = True,
     proofs: Proofs | None = None,
     key: str | None = None,
+    package_paths: tuple[Path, ...] = (),
 ) -> str:
     """The whole page. ``check_out`` is (stdout, stderr) of ``descgen check`` for the transcript,
     ``n`` the number of files generate writes, ``proofs`` the results of checks.CHECKS by name
     when the caller has them, ``key`` the :func:`input_key` to record on the last line."""
-    validation, _ = _validation(spec, shown)
+    validation, _ = _validation(spec, shown, package_paths)
     traces, dvm = _control(package)
     parts = [
         f"# Evidence for {_md().mdtext(robot.name)}",
@@ -402,7 +409,7 @@ def build(
         *_timestamps(robot),
         *traces,
         *dvm,
-        *_transcript(spec, shown, check_out, n, simulate, robot),
+        *_transcript(spec, shown, check_out, n, simulate, robot, package_paths),
         *_field_story(spec, shown, robot),
     ]
     page = _relative("\n".join(parts).rstrip("\n") + "\n", package)

@@ -38,6 +38,8 @@ class Plan:
     moveit_dir: Path | None = None
     # each proof's findings by its name (checks.CHECKS order): the evidence page shows them
     proofs: tuple[tuple[str, tuple[Finding, ...]], ...] = ()
+    # where the spec's other packages were looked for after its package_paths: (the page reads it again)
+    package_paths: tuple[Path, ...] = ()
 
     def content(self) -> dict[str, str | bytes]:
         """Every file generate writes: the text files and the mesh copies."""
@@ -110,7 +112,17 @@ def plan(
         moveit_dir = root / moveit_package_name(robot)
         moveit_files = render(robot, files, shown, templates, sandboxed)
         found += proof.check(moveit_files, robot, moveit_dir, files)
-    return Plan(robot, dict(sorted(files.items())), package_dir, tuple(found), meshes, moveit_files, moveit_dir, proofs)
+    return Plan(
+        robot,
+        dict(sorted(files.items())),
+        package_dir,
+        tuple(found),
+        meshes,
+        moveit_files,
+        moveit_dir,
+        proofs,
+        tuple(package_paths),
+    )
 
 
 def _with_matrix(
@@ -328,7 +340,19 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
     key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, len(p.content()))
     if not write_page and page.current(p.package_dir, key):  # built from these very inputs: not again
         return pose_images.stale(p.package_dir, p.robot)
-    fresh = page.build(spec, shown, p.files, p.robot, p.package_dir, lines, len(p.content()), write_page, p.proofs, key)
+    fresh = page.build(
+        spec,
+        shown,
+        p.files,
+        p.robot,
+        p.package_dir,
+        lines,
+        len(p.content()),
+        write_page,
+        p.proofs,
+        key,
+        p.package_paths,
+    )
     if not write_page:
         return page.stale(p.package_dir, fresh) + pose_images.stale(p.package_dir, p.robot)
     bad = page.failed_verdicts(fresh)

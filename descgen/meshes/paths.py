@@ -32,7 +32,7 @@ from descgen.core.findings import Finding, Where
 from descgen.core.model import Collision, Link, Mesh, MeshState, Robot, Visual
 from descgen.core.record import record
 from descgen.infra.safeio import MIB, within
-from descgen.meshes.packages import find_package, manifest_name
+from descgen.meshes.packages import find_package, manifest_name, package_roots
 
 MAX_MESH_BYTES = 64 * MIB  # the largest meshes of real robots are a few MB; a CAD dump may be tens
 PACKAGE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]*")  # what $(find) accepts too
@@ -97,12 +97,12 @@ def _resolve(
         folder = packages[package]
         if folder is None:
             return Resolved("unresolved", package=package)
-        inside, target = str(folder), _realpath(os.path.join(folder, rest), folders)
+        roots, target = package_roots(folder), _realpath(os.path.join(folder, rest), folders)
     elif name.startswith("file://") or os.path.isabs(name):  # Path(name).is_absolute(), without a Path
         return Resolved("escapes")
     else:
-        inside, target = _realpath(str(root), folders), _realpath(os.path.join(base, name), folders)
-    if not within(target, inside):  # the real path: a link out is caught too
+        roots, target = (_realpath(str(root), folders),), _realpath(os.path.join(base, name), folders)
+    if not any(within(target, r) for r in roots):  # the real path: a link out is caught too
         return Resolved("escapes", package=package)
     try:
         st = os.stat(target)
@@ -197,25 +197,29 @@ def _mesh_names(robot: Robot) -> Iterator[str]:
 
 
 def project_root(spec: Path) -> Path:
-    """The folder a spec's recorded folders (``package_paths``, ``templates``) may not leave:
-    the project, i.e. the folder holding ``specs/`` (where ``generated/`` goes too), or the
-    spec's own folder when it is not in a ``specs`` folder."""
+    """The folder a spec's ``templates:`` may not leave: the project, i.e. the folder holding
+    ``specs/`` (where ``generated/`` goes too), or the spec's own folder when it is not in a
+    ``specs`` folder."""
     folder = spec.resolve().parent
     return folder.parent if folder.name == "specs" else folder
 
 
-def spec_folder(spec: Path, written: str) -> Path | None:
-    """A folder recorded in a spec (relative to it), resolved; None when it is absolute, leaves
-    the project or is not a folder (resolve_spec reports why)."""
-    return _folder(spec, written)[0]
+def spec_folder(spec: Path, written: str, key: str = "package_paths") -> Path | None:
+    """A folder recorded in a spec (relative to it), resolved; None when it is absolute, is
+    not a folder or (``templates``) leaves the project (resolve_spec reports why)."""
+    return _folder(spec, written, key)[0]
 
 
-def _folder(spec: Path, written: str) -> tuple[Path | None, str]:
+def _folder(spec: Path, written: str, key: str) -> tuple[Path | None, str]:
+    """A ``package_paths:`` entry may lie outside the project (a workspace beside it, as
+    ``../../ws/src``): only packages are read there, each only inside itself (find_package,
+    :func:`resolve`), so it points descgen at packages, not at the machine. Templates are
+    code that renders the package, so they stay in the project."""
     try:
         if Path(written).is_absolute():
             return None, "is an absolute path; a spec records folders relative to itself, so it works on any machine"
         target = (spec.resolve().parent / written).resolve()
-        if not target.is_relative_to(project_root(spec)):
+        if key == "templates" and not target.is_relative_to(project_root(spec)):
             return None, f"leaves the project folder {project_root(spec).name}/"
         if not target.is_dir():
             return None, "is not a folder"
@@ -249,11 +253,18 @@ def own_meshes(robot: Robot) -> dict[str, Path]:
     return {name[len(prefix) :]: Path(path) for name, path in robot.mesh_files if name.startswith(prefix)}
 
 
+# a package a pass-through element names, as xacro and ROS write it: $(find pkg) (kept symbolic
+# by import and evaluated by xacro at launch, descgen/spec/passthrough.py) and package://pkg/
+PACKAGE_REF = re.compile(r"\$\(find ([A-Za-z0-9][A-Za-z0-9_-]*)\)|package://([A-Za-z0-9][A-Za-z0-9_-]*)/")
+
+
 def other_packages(robot: Robot) -> list[str]:
-    """Packages whose meshes the robot references (they become exec_depends)."""
+    """Packages the outputs reference, each an exec_depend: those of the robot's meshes and
+    those its pass-through elements name (a Gazebo plugin's ``$(find pkg)/config/...``)."""
     own = package_name(robot)
-    found = {uri[0] for name in _mesh_names(robot) if (uri := split_package_uri(name)) and uri[0] != own}
-    return sorted(p for p in found if PACKAGE_NAME.fullmatch(p))
+    found = {uri[0] for name in _mesh_names(robot) if (uri := split_package_uri(name))}
+    found |= {m.group(1) or m.group(2) for xml in robot.passthrough for m in PACKAGE_REF.finditer(xml)}
+    return sorted(p for p in found - {own} if PACKAGE_NAME.fullmatch(p))
 
 
 def _mesh_refs(spec: Any) -> Iterator[tuple[tuple[str | int, ...], str]]:
@@ -286,14 +297,14 @@ def resolve_spec(
     problems: list[Finding] = []
     search: list[Path] = []
     for i, written in enumerate(getattr(spec, "package_paths", None) or []):
-        folder, why = _folder(spec_path, written)
+        folder, why = _folder(spec_path, written, "package_paths")
         if folder is None:
             problems.append(_folder_error(("package_paths", i), written, why, where))
         else:
             search.append(folder)
     templates = getattr(spec, "templates", None)
     if templates is not None:
-        folder, why = _folder(spec_path, templates)
+        folder, why = _folder(spec_path, templates, "templates")
         if folder is None:
             problems.append(_folder_error(("templates",), templates, why, where))
     search += list(package_paths)
@@ -369,13 +380,14 @@ def _refusal(name: str, r: Resolved, at: Where, have_paths: bool) -> Finding | N
         )
     if r.state == "unresolved":
         where_ = (
-            "in no folder of package_paths: or --package-path"
+            "which is in no folder of package_paths:, --package-path or the sourced environment"
             if have_paths
-            else "but the spec records no package_paths: and no --package-path was given"
+            else "but the spec records no package_paths:, no --package-path was given and no ROS workspace is "
+            "sourced (AMENT_PREFIX_PATH, ROS_PACKAGE_PATH)"
         )
         return _error(
             SPEC062,
-            f"mesh '{name}' names package '{r.package}', which is {where_}",
+            f"mesh '{name}' names package '{r.package}', {where_}",
             f"pass --package-path DIR, DIR being the folder that holds {r.package}/ (to validate, generate and "
             "check alike), or record that folder relative to the spec under package_paths:, or fix the package name",
             at,
@@ -410,7 +422,10 @@ def _folder_error(ypath: tuple[str | int, ...], written: str, why: str, where: A
     return _error(
         SPEC064,
         f"{key} entry '{written}' {why}",
-        "name a folder relative to the spec, inside the project (the folder holding specs/)",
+        "name a folder relative to the spec, inside the project (the folder holding specs/)"
+        if key == "templates"
+        else "name a folder relative to the spec (it may lie outside the project, e.g. ../../ws/src), or pass "
+        "--package-path DIR, or source the workspace",
         where(ypath),
     )
 

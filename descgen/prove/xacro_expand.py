@@ -100,7 +100,7 @@ def expand_scratch(top: Path, display: str, args: Mapping[str, str], package_pat
         beside = top.with_name(f".{secrets.token_hex(8)}.{top.name}")
         beside.write_text(skeleton.text, encoding="utf-8")
         try:
-            expanded = sandboxed_expand(beside, display, dict(args), package_paths=package_paths).decode("utf-8")
+            expanded = sandboxed_expand(beside, display, dict(args), package_paths, symbolic_find=True).decode("utf-8")
             joined = xacro_skeleton.join(expanded, skeleton, MAX_ELEMENTS, MAX_TEXT)
         except InputError:
             joined = None
@@ -108,7 +108,7 @@ def expand_scratch(top: Path, display: str, args: Mapping[str, str], package_pat
             beside.unlink()
         if joined is not None:
             return joined
-    return sandboxed_expand(top, display, dict(args), package_paths=package_paths).decode("utf-8")
+    return sandboxed_expand(top, display, dict(args), package_paths, symbolic_find=True).decode("utf-8")
 
 
 def _utf8_locale() -> bool:

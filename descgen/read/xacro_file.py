@@ -235,7 +235,7 @@ def _patched(obj: Any, **attrs: Any) -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def _find_from(package_paths: Sequence[Path]) -> Iterator[None]:
+def _find_from(package_paths: Sequence[Path], symbolic: bool = False) -> Iterator[None]:
     import xacro.substitution_args as sa
 
     def eval_find(pkg: str) -> str:
@@ -243,6 +243,8 @@ def _find_from(package_paths: Sequence[Path]) -> Iterator[None]:
         if not _PACKAGE_NAME.fullmatch(pkg):
             raise LookupError(f"'{pkg}' is not a package name")
         found = find_package(pkg, package_paths)
+        if found is None and symbolic:
+            return f"$(find {pkg})"  # as the plain URDF writes it (descgen/spec/passthrough.py)
         if found is None:
             raise LookupError(
                 f"package '{pkg}' not found in --package-path {', '.join(map(str, package_paths)) or '(none)'}"
@@ -404,12 +406,17 @@ def expand(
     mappings: Mapping[str, str] | None = None,
     package_paths: Sequence[Path] = (),
     trusted: bool = False,
+    symbolic_find: bool = False,
 ) -> bytes:
     """The expanded XML of a Xacro file, or an InputError saying why it was refused.
 
     Same sandbox, without recording where each element was written (nobody asks here; on a
-    1000-link Xacro the bookkeeping is ~15 % of the expansion)."""
-    return expand_located(path, display, mappings, package_paths, trusted, locate=False).xml
+    1000-link Xacro the bookkeeping is ~15 % of the expansion). ``symbolic_find``: a
+    ``$(find pkg)`` of a package not in ``package_paths`` expands to itself (the proof of a
+    generated package, whose plain URDF keeps it so)."""
+    return expand_located(
+        path, display, mappings, package_paths, trusted, locate=False, symbolic_find=symbolic_find
+    ).xml
 
 
 def expand_located(
@@ -419,6 +426,7 @@ def expand_located(
     package_paths: Sequence[Path] = (),
     trusted: bool = False,
     locate: bool = True,
+    symbolic_find: bool = False,
 ) -> Expansion:
     """:func:`expand`, and where each element of the result was written. ``display`` names
     the top file; an included file is named relative to it when it lies beside or below it.
@@ -433,7 +441,7 @@ def expand_located(
             if not trusted:
                 _confine(box, str(top), "include")
             with contextlib.ExitStack() as stack:
-                stack.enter_context(_find_from(package_paths))
+                stack.enter_context(_find_from(package_paths, symbolic_find))
                 if not trusted:
                     stack.enter_context(_sandboxed(box))
                 if locate:

@@ -4,7 +4,9 @@ tags), kept as XML text and re-emitted verbatim by generate.
 Pass-through text is data from someone else, and the generated Xacro is expanded by xacro
 (display.launch.py, MoveItConfigsBuilder). In the Xacro output every ``$`` of a text or an
 attribute becomes ``${'$'}`` (xacro evaluates that to a literal dollar), so no
-``${...}``/``$(...)`` in it is ever evaluated. xacro 2.x evaluates nothing else of plain XML:
+``${...}``/``$(...)`` in it is ever evaluated, except ``$(find pkg)`` with a package name
+(:func:`for_xacro`), which xacro evaluates to that package's folder on the machine that
+launches the robot; the plain URDF keeps it as written. xacro 2.x evaluates nothing else of plain XML:
 it walks elements, attributes and texts, and leaves processing instructions and CDATA alone
 (pinocchio's urdfdom refuses the former, the spec the latter). The exceptions are comments
 after a ``<!-- xacro:eval-comments -->`` comment, and every ``xacro:``-prefixed element and
@@ -17,6 +19,7 @@ verbatim).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
 from lxml import etree
@@ -110,7 +113,7 @@ def for_xacro(xml: str) -> str:
     e = etree.fromstring(xml.encode("utf-8"), _parser())
     for x in e.iter():
         if x is not e and x.tail:
-            x.tail = x.tail.replace("$", "${'$'}")
+            x.tail = _escaped(x.tail)
         if isinstance(x, etree._Comment):
             if x.text and EVAL_COMMENTS in x.text:
                 x.text = x.text.replace(EVAL_COMMENTS, "xacro: eval-comments")
@@ -118,10 +121,21 @@ def for_xacro(xml: str) -> str:
         if not isinstance(x.tag, str):
             continue  # a processing instruction: xacro leaves it alone
         if x.text:
-            x.text = x.text.replace("$", "${'$'}")
+            x.text = _escaped(x.text)
         for k, v in x.attrib.items():
-            x.set(k, str(v).replace("$", "${'$'}"))
+            x.set(k, _escaped(str(v)))
     return etree.tostring(e, encoding="unicode", with_tail=False)
+
+
+# ``$(find pkg)`` with a package name and nothing else: the one substitution left live, so a
+# Gazebo plugin's parameters file is this package's on the machine that launches it (xacro
+# evaluates it there), never the absolute path of the machine that imported it. It reads the
+# package index, nothing more: no code, no file, no environment variable of the input's choice.
+_LIVE = re.compile(r"\$\(find [A-Za-z0-9][A-Za-z0-9_-]*\)|\$")
+
+
+def _escaped(text: str) -> str:
+    return _LIVE.sub(lambda m: m.group() if len(m.group()) > 1 else "${'$'}", text)
 
 
 Canon = tuple[object, ...]

@@ -3,8 +3,11 @@ its ``package://`` meshes name, recorded relative to the spec (descgen/meshes/pa
 ``validate`` and ``generate`` find the same files as the audit did; and ``package.name``, the
 generated package's own name, when ``<robot>_description`` cannot be it.
 
-A spec may only record folders inside its project (mesh_paths.project_root); a package found
-elsewhere is named on the command line instead (``--package-path``), and that is said (IMP012).
+A folder named with ``--package-path`` (or the description's own) is recorded relative to the
+spec, inside the project or not (a workspace beside it, ``../../ws/src``); one the sourced
+environment gave (AMENT_PREFIX_PATH, ROS_PACKAGE_PATH) is not: any machine that sources its
+workspace finds it the same way (descgen/meshes/packages.py), and a path to this machine's
+/opt/ros would be wrong on the next.
 
 The generated package's name must be a REP 144 name (``2dof_planar_description`` is not) and
 must not be a package the meshes come from: UR's robot ``ur`` would generate ``ur_description``,
@@ -16,14 +19,17 @@ package is then ``<robot>_descgen_description``, beside the upstream one (IMP014
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from descgen.codes.importer import IMP012, IMP014
+from descgen.codes.importer import IMP014
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
-from descgen.meshes.paths import PACKAGE_NAME, project_root, split_package_uri
+from descgen.infra.safeio import within
+from descgen.meshes.packages import environment, manifest_name
+from descgen.meshes.paths import PACKAGE_NAME, package_root, split_package_uri
 from descgen.read.xacro_file import find_package
 from descgen.spec.models import rep144_problem, suggest_package_name
 
@@ -42,39 +48,64 @@ def _packages(robot: m.Robot) -> list[str]:
 def package_paths(
     robot: m.Robot, description: Path, spec: Path, given: Sequence[Path]
 ) -> tuple[list[str], list[Finding]]:
-    """(folders to record, relative to ``spec``; IMP012 for a package outside the project).
+    """(folders to record, relative to ``spec``; findings, none today).
 
-    The search is the audit's (mesh_paths.mesh_status): ``--package-path`` folders in order,
-    then the description's package's parent and its own folder."""
-    base = description.resolve().parent
-    search = [*given, base.parent, base]
+    The search is the audit's (mesh_paths.mesh_status): the given folders in order (the
+    command's search: --package-path, then the environment's), then the description's own
+    package, nothing else, so the spec finds what the audit found. A package found through
+    the environment is not recorded (the module's docstring)."""
+    search = [*given, package_root(description.resolve().parent)]
+    sourced = set(environment(os.environ))
     spec_dir = spec.resolve().parent
-    project = project_root(spec)
     folders: list[str] = []
-    problems: list[Finding] = []
     for pkg in _packages(robot):
         folder = next((f for f in search if find_package(pkg, [f]) is not None), None)
-        if folder is None:
-            continue  # not found at all: the audit reports its meshes (GEOM)
-        target = folder.resolve()
-        if not target.is_relative_to(project):
-            problems.append(_outside(pkg, target, project))
-            continue
-        rel = Path(os.path.relpath(target, spec_dir)).as_posix()
+        if folder is None or folder in sourced:
+            continue  # not found at all (the audit reports its meshes: GEOM), or found as ROS finds it
+        rel = Path(os.path.relpath(folder.resolve(), spec_dir)).as_posix()
         if rel not in folders:
             folders.append(rel)
-    return folders, problems
+    return folders, []
 
 
-def _outside(pkg: str, folder: Path, project: Path) -> Finding:
-    return IMP012.finding(
-        f"package '{pkg}' (named by package:// meshes) is in {folder}, outside the spec's project "
-        f"{project}, so the spec does not record it (package_paths: stay inside the project)",
-        f"pass --package-path {folder} to validate, generate and check; the generated package references "
-        f"its meshes and depends on {pkg} (exec_depend)",
-        f"package:{pkg}",
-        Where(str(folder)),
-    )
+# an absolute path in a pass-through text or attribute, up to a quote, space, markup or separator
+_ABSOLUTE = re.compile(r"/[^\s\"'<>;:,]+")
+
+
+def symbolic(xml: str, search: Sequence[Path]) -> str:
+    """``xml`` (a pass-through element) with every absolute path into a package written
+    ``$(find pkg)/...``: what the Xacro said before it was expanded on this machine (a Gazebo
+    plugin's ``<parameters>$(find pkg)/config/controllers.yaml</parameters>``), so the spec and
+    the generated package hold no path of this machine, and package.xml depends on ``pkg``.
+
+    A path counts when it lies in a folder of ``search`` and the nearest folder above it
+    holding a package.xml is the package that name finds there (what ``$(find)`` gave); only
+    folders inside ``search`` are looked at, so a path of the input reads nothing else."""
+    roots = [os.path.realpath(f) for f in search]
+    cache: dict[str, str | None] = {}
+
+    def package_of(folder: str) -> str | None:
+        if folder not in cache:
+            name = manifest_name(Path(folder) / "package.xml")
+            found = find_package(name, search) if name else None
+            cache[folder] = name if found is not None and os.path.realpath(found) == folder else None
+        return cache[folder]
+
+    def replace(m: re.Match[str]) -> str:
+        path = m.group()
+        if not any(within(path, r) for r in roots):
+            return path
+        folder = os.path.dirname(path) if not os.path.isdir(path) else path
+        while any(within(folder, r) for r in roots):
+            pkg = package_of(folder)
+            if pkg is not None:
+                return f"$(find {pkg})" + path[len(folder) :]
+            if folder == os.path.dirname(folder):
+                break
+            folder = os.path.dirname(folder)
+        return path
+
+    return _ABSOLUTE.sub(replace, xml)
 
 
 def package_name(robot: m.Robot, where: Where) -> tuple[str | None, list[Finding]]:

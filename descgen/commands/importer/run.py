@@ -31,7 +31,7 @@ from descgen.codes.importer import (
     IMP035,
 )
 from descgen.commands.importer import control, variants
-from descgen.commands.importer.packages import package_name, package_paths, with_package_name
+from descgen.commands.importer.packages import package_name, package_paths, symbolic, with_package_name
 from descgen.commands.importer.poses import known_poses
 from descgen.commands.importer.quantity import Units
 from descgen.commands.importer.spec import SpecWriter, number, source_name
@@ -40,6 +40,7 @@ from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.infra.safeio import check_file, read_bounded
+from descgen.meshes.paths import package_root
 from descgen.read.description import Options, kind_of
 from descgen.read.srdf import read_srdf_text
 from descgen.read.urdf import element_sources, parse_xml, read_urdf_text
@@ -234,6 +235,9 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
         robot, more_states = _finite_states(robot, srdf)
         report += more_states
     kept, refused = passthrough.collect(root, located.get)
+    # a $(find pkg) the expansion turned into this machine's path is written $(find pkg) again
+    search = [*opts.description.package_paths, package_root(path.resolve().parent)]
+    kept = [dataclasses.replace(k, xml=symbolic(k.xml, search)) for k in kept]
     writer = SpecWriter(opts.units, source_name)
     ctl = control.import_control(
         root,

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -154,7 +153,7 @@ def too_large(robot: Robot, seconds: float, free: bool) -> str:
     return ""
 
 
-def simulate(robot: Robot, settings: Settings, description: Path | None, package_paths: Sequence[Path] = ()) -> Outcome:
+def simulate(robot: Robot, settings: Settings) -> Outcome:
     """Compile ``robot`` with MuJoCo, report its refusals and silent changes, run gravity.
     InputError (SIM017) for a robot past the bounds (:func:`too_large`), before MuJoCo sees it."""
     require_mujoco()
@@ -190,7 +189,7 @@ def simulate(robot: Robot, settings: Settings, description: Path | None, package
             assert root is not None
             gravity.add_floor(spec, root)
 
-    compiled = compile_robot(robot, lambda r: emit(r, description, package_paths), customise)
+    compiled = compile_robot(robot, emit, customise)
     report: dict[str, Any] = {"base": base, "pose": settings.pose or "zero", "seconds": settings.seconds}
     if compiled.spec is None:
         return Outcome(compiled.findings, report | {"compiled": False})
@@ -250,6 +249,6 @@ def simulate_description(path: Path, options: Any, settings: Settings) -> Outcom
 
     require_mujoco()  # before reading: a missing optional package is the first thing to say
     robot, read = load_description(path, options)
-    outcome = simulate(robot, settings, path, tuple(options.package_paths))
+    outcome = simulate(robot, settings)
     outcome.findings[:0] = read
     return outcome

@@ -8,9 +8,8 @@ far outside the base, and an actuator with no damping and a huge gear.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 
 from descgen.commands.simulate import Outcome, Settings, simulate
 from descgen.core.findings import Finding
@@ -128,8 +127,6 @@ CATALOGUE: tuple[SimFault, ...] = (
 def plant_all(
     robot: Robot,
     settings: Settings,
-    description: Path | None,
-    package_paths: Sequence[Path] = (),
     catalogue: tuple[SimFault, ...] = CATALOGUE,
 ) -> list[SimResult]:
     """Run each planted fault; caught when the run fails with an expected code."""
@@ -139,7 +136,7 @@ def plant_all(
         if planted is None:
             out.append(SimResult(fault, "not applicable", False, applicable=False))
             continue
-        outcome: Outcome = simulate(planted.robot, planted.settings, description, package_paths)
+        outcome: Outcome = simulate(planted.robot, planted.settings)
         by = tuple(f for f in outcome.findings if f.code in fault.expects and f.severity == "error")
         out.append(SimResult(fault, planted.what, bool(by), by))
     return out

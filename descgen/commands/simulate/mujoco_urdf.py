@@ -9,7 +9,6 @@ them (``discardvisual``), which :mod:`.compile` reports.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -19,9 +18,7 @@ from descgen.codes.simulate import SIM008
 from descgen.core.findings import Finding
 from descgen.core.model import Collision, Joint, Link, Mesh, Robot, Visual
 from descgen.infra.safeio import read_bounded
-from descgen.meshes.packages import manifest_name
 from descgen.physics.urdf_xml import geometry, origin, xyz
-from descgen.read.xacro_file import find_package, package_root
 
 # mesh formats MuJoCo's compiler reads (user_mesh.cc); Collada and others are refused
 MESH_FORMATS = (".stl", ".obj", ".msh")
@@ -36,28 +33,6 @@ class Emitted:
     assets: dict[str, bytes] = field(default_factory=dict)
     findings: list[Finding] = field(default_factory=list)
     dropped: int = 0  # collision shapes left out (their mesh could not be handed to MuJoCo)
-
-
-def resolve_mesh(name: str, description: Path | None, package_paths: Sequence[Path]) -> Path | None:
-    """The file a mesh filename names, or None when it is not a file inside the named folders."""
-    base = description.resolve().parent if description is not None else None
-    try:
-        if name.startswith("package://"):
-            pkg, _, rest = name[len("package://") :].partition("/")
-            # the named folders, then the description's own package; never the folders beside it
-            found = find_package(pkg, package_paths) if pkg else None
-            if found is None and base is not None and pkg and manifest_name(package_root(base) / "package.xml") == pkg:
-                found = package_root(base)
-            if found is None:
-                return None
-            root, target = found.resolve(), (found / rest).resolve()
-        elif base is None or name.startswith(("file://", "/")):
-            return None  # an absolute path reaches outside the folders the user named
-        else:
-            root, target = package_root(base).resolve(), (base / name).resolve()
-        return target if target.is_relative_to(root) and target.is_file() else None
-    except (OSError, ValueError):
-        return None
 
 
 def _collada_as_stl(path: Path) -> tuple[bytes | None, str | None]:
@@ -80,19 +55,24 @@ def _collada_as_stl(path: Path) -> tuple[bytes | None, str | None]:
 
 
 class _Writer:
-    def __init__(self, robot: Robot, description: Path | None, package_paths: Sequence[Path]) -> None:
+    def __init__(self, robot: Robot) -> None:
         self.robot = robot
-        self.description = description
-        self.package_paths = package_paths
+        # the files the one resolver accepted when the robot was read (descgen/meshes/paths.py),
+        # as every command reads them: a spec's package_paths:, --package-path, the environment
+        ok = {name for name, state in robot.mesh_status if state == "ok"}
+        self.files = {name: Path(file) for name, file in robot.mesh_files if name in ok}
         self.out = Emitted("")
         self.names: dict[Path, str] = {}
 
     def mesh_asset(self, link: Link, shape: Collision, mesh: Mesh) -> str | None:
-        path = resolve_mesh(mesh.filename, self.description, self.package_paths)
+        path = self.files.get(mesh.filename)
         why = None
         converted: bytes | None = None
         if path is None:
-            why = "is not a file inside the description's package or a --package-path folder"
+            why = (
+                "is not a file inside the description's package, a spec's package_paths:, a --package-path "
+                "folder or the sourced environment's packages"
+            )
         elif path.suffix.lower() == ".dae":
             converted, why = _collada_as_stl(path)
         elif path.suffix.lower() not in MESH_FORMATS:
@@ -172,10 +152,10 @@ class _Writer:
             etree.SubElement(el, "mimic", joint=m.joint, multiplier=repr(m.multiplier), offset=repr(m.offset))
 
 
-def emit(robot: Robot, description: Path | None, package_paths: Sequence[Path] = ()) -> Emitted:
+def emit(robot: Robot) -> Emitted:
     """The URDF of ``robot`` for MuJoCo, with MuJoCo's own URDF defaults left in force (fixed
     links fused, visuals discarded): what a user who loads the URDF gets is what is checked."""
-    w = _Writer(robot, description, package_paths)
+    w = _Writer(robot)
     root = etree.Element("robot", name=robot.name)
     for lk in robot.links:
         w.link(root, lk)
