@@ -307,17 +307,7 @@ def _corpus_cases() -> list[dict[str, object]]:
     return list(yaml.safe_load((CORPUS / "corpus.yaml").read_text())["cases"])
 
 
-_FILE_FIND = pytest.mark.xfail(
-    strict=True,
-    reason="descgen defect: a file://$(find pkg)/... mesh (anymal_c) is judged outside its package (GEOM004), "
-    "though it lies inside a package the search finds",
-)
-
-
-@pytest.mark.parametrize(
-    "case",
-    [pytest.param(c, id=str(c["id"]), marks=[_FILE_FIND] if c["id"] == "anymal_c" else []) for c in _corpus_cases()],
-)
+@pytest.mark.parametrize("case", _corpus_cases(), ids=lambda c: str(c["id"]))
 def test_every_reader_resolves_the_corpus_meshes_alike(
     case: dict[str, object], monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -353,3 +343,33 @@ def test_every_reader_resolves_the_corpus_meshes_alike(
     emitted = emit(flag)
     assert not [f for f in emitted.findings if "is not a file inside" in f.message]
     del load
+
+
+def test_an_absolute_mesh_is_read_only_inside_the_folders_named(tmp_path: Path) -> None:
+    """``file://$(find pkg)/meshes/x.stl`` expanded is this machine's absolute path: the audit
+    reads it inside a folder the user named (or the description's package), as RViz would, and
+    import writes it ``package://pkg/...``; anywhere else it is GEOM004, and a spec never has one."""
+    from descgen.meshes.paths import resolve_names
+
+    ws = tmp_path / "ws"
+    pkg = _package(ws / "gripper_pkg")
+    finger = (pkg / "meshes" / "finger.stl").resolve()
+    outside = tmp_path / "outside.stl"
+    shutil.copy(finger, outside)
+    desc = tmp_path / "desc" / "bot.urdf"  # its own folder: a relative name could not leave it
+    desc.parent.mkdir()
+    names = [f"file://{finger}", str(finger), f"file://{outside}"]
+    status, files = resolve_names(names, desc, [ws])
+    assert status == {names[0]: "ok", names[1]: "ok", names[2]: "escapes"}
+    assert files[names[0]] == finger
+    assert resolve_names(names[:1], desc, [])[0] == {names[0]: "escapes"}  # the folder not named
+
+    urdf = URDF.replace(MESH, f"file://{finger}")
+    desc.write_text(urdf)
+    spec = tmp_path / "project" / "specs" / "bot.yaml"
+    ran = cli("import", desc, "-o", spec, "--package-path", ws)
+    assert ran.returncode == 0, ran.stderr
+    assert "info[IMP036]" in ran.stderr and "GEOM004" not in ran.stderr
+    text = spec.read_text()
+    assert MESH in text and str(tmp_path) not in text
+    assert cli("validate", spec).returncode == 0

@@ -279,3 +279,25 @@ IMP035 = declare(
     """A spec that validate refuses is no import: every command that reads it would stop at the size
       bound, and the round trip could not prove it. Exit 2, nothing written; split the description.""",
 )
+
+IMP036 = declare(
+    "IMP036",
+    "import-absolute-mesh-as-package",
+    "info",
+    "A mesh named by an absolute path or file:// (a Xacro's file://$(find pkg)/... expanded) lies in a "
+    "package, and is written package://pkg/... in the spec.",
+    """The expansion holds this machine's path; a spec records nothing machine-specific (SPEC061 refuses
+      an absolute mesh), and package:// is what RViz, Gazebo and MoveIt resolve to the same file on any
+      machine that has the package (docs/packages.md). The file is the same one: the audit read it.""",
+)
+
+IMP037 = declare(
+    "IMP037",
+    "import-disabled-pair-repeated",
+    "info",
+    "The SRDF disables one link pair twice; the spec keeps the first (MoveIt's collision matrix holds the "
+    "pair once, whatever the reasons).",
+    """MoveIt allows a repeated <disable_collisions> (the allowed collision matrix marks the pair again);
+      a spec names each pair once (SPEC024), so import keeps the first with its reason and says which
+      line it left out.""",
+)

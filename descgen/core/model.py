@@ -272,6 +272,7 @@ class ControlGpio:
     state: tuple[Interface, ...] = ()
     where: Where = NOWHERE
     block: str = ""  # name of the <ros2_control> block holding the gpio
+    params: tuple[tuple[str, str], ...] = ()  # <param>s of the gpio
 
 
 @record
@@ -295,6 +296,7 @@ class HardwareBlock:
     where: Where = NOWHERE
     type: str = "system"  # system | actuator | sensor
     variants: tuple[HardwareVariant, ...] = ()  # as Ros2Control.variants, for this block
+    is_async: bool | None = None  # the is_async attribute; None: not written (ros2_control: false)
 
 
 @record
@@ -348,11 +350,12 @@ class Ros2Control:
     variants: tuple[HardwareVariant, ...] = ()
     gpios: tuple[ControlGpio, ...] = ()
     update_rate_where: Where = NOWHERE  # its value in an audited controllers file; else unknown
+    is_async: bool | None = None  # the first block's is_async attribute; None: not written
 
     def hardware_blocks(self) -> tuple[HardwareBlock, ...]:
         """Every ``<ros2_control>`` block in document order; a spec with one block has no
         ``blocks``, so it is the block described by the fields above."""
-        first = HardwareBlock(self.name, self.plugin, self.params, self.where, self.type, self.variants)
+        first = HardwareBlock(self.name, self.plugin, self.params, self.where, self.type, self.variants, self.is_async)
         return self.blocks or (first,)
 
 

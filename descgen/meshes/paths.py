@@ -64,16 +64,25 @@ def resolve(
     package_paths: Sequence[Path],
     packages: dict[str, Path | None] | None = None,
     folders: dict[str, str] | None = None,
+    absolute_in: tuple[str, ...] = (),
 ) -> Resolved:
     """Resolve ``name`` as written in a file whose folder is ``base``. A relative name must
     stay inside ``root``; a ``package://`` name inside its package, found in ``package_paths``
-    (in order). ``packages`` memoises package name -> folder and ``folders`` a folder's real
-    path across the calls of one description (searching the package paths and resolving
-    every folder of a path again are most of the cost). Never raises for a bad name: a NUL
-    byte, an over-long name or a link loop is a file that cannot be there."""
+    (in order); an absolute one (``/...``, ``file:///...``) inside one of the real folders
+    ``absolute_in`` (none for a spec, which must work on any machine). ``packages`` memoises
+    package name -> folder and ``folders`` a folder's real path across the calls of one
+    description (searching the package paths and resolving every folder of a path again are
+    most of the cost). Never raises for a bad name: a NUL byte, an over-long name or a link
+    loop is a file that cannot be there."""
     try:
         return _resolve(
-            name, base, root, package_paths, {} if packages is None else packages, {} if folders is None else folders
+            name,
+            base,
+            root,
+            package_paths,
+            {} if packages is None else packages,
+            {} if folders is None else folders,
+            absolute_in,
         )
     except (OSError, ValueError):
         return Resolved("missing")
@@ -86,6 +95,7 @@ def _resolve(
     package_paths: Sequence[Path],
     packages: dict[str, Path | None],
     folders: dict[str, str],
+    absolute_in: tuple[str, ...] = (),
 ) -> Resolved:
     uri = split_package_uri(name)
     package = None
@@ -99,7 +109,12 @@ def _resolve(
             return Resolved("unresolved", package=package)
         roots, target = package_roots(folder), _realpath(os.path.join(folder, rest), folders)
     elif name.startswith("file://") or os.path.isabs(name):  # Path(name).is_absolute(), without a Path
-        return Resolved("escapes")
+        # what a Xacro's file://$(find pkg)/meshes/... expands to: fine inside a folder the user
+        # named (its package is there on any machine that expands it), refused anywhere else
+        written = name[len("file://") :] if name.startswith("file://") else name
+        if not absolute_in or not os.path.isabs(written):
+            return Resolved("escapes")
+        roots, target = absolute_in, os.path.realpath(written)
     else:
         roots, target = (_realpath(str(root), folders),), _realpath(os.path.join(base, name), folders)
     if not any(within(target, r) for r in roots):  # the real path: a link out is caught too
@@ -164,6 +179,9 @@ def resolve_names(
     base = description.resolve().parent
     search = list(package_paths)
     root = package_root(base)  # once per description, not per mesh
+    # an absolute mesh (file://$(find pkg)/... expanded) may lie in the folders the user named
+    # or in the description's own package, as RViz's resource_retriever reads it
+    absolute_in = tuple(dict.fromkeys(os.path.realpath(f) for f in (root, *search)))
     packages: dict[str, Path | None] = {}
     own: list[str | None] = []  # the own package's name, read once, only when a name needs it
     folders: dict[str, str] = {}
@@ -179,7 +197,7 @@ def resolve_names(
                     own.append(manifest_name(root / "package.xml"))
                 found = root if own[0] == uri[0] else None
             packages[uri[0]] = found.resolve() if found is not None else None
-        r = resolve(name, base, root, search, packages, folders)
+        r = resolve(name, base, root, search, packages, folders, absolute_in)
         status[name] = r.state
         if r.state == "ok" and r.path is not None:
             files[name] = r.path

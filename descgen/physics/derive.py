@@ -12,7 +12,7 @@ from descgen.core.model import WITH_LIMITS, Controller, Cylinder, Interface, Joi
 from descgen.core.record import record
 
 if TYPE_CHECKING:
-    pass
+    from descgen.physics.rigid import Frame
 
 
 def _wheel_names(c: Controller, key: str) -> list[str]:
@@ -42,20 +42,24 @@ def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
         missing = [n for n, j in zip((left[0], right[0]), joints, strict=True) if j is None]
         return DiffDriveGeometry(None, None, (f"wheel joint '{missing[0]}' does not exist",))
     separation = None
-    base = lj.parent
-    if lj.parent != rj.parent or base is None:
-        problems.append(f"wheels '{lj.name}' and '{rj.name}' hang from different links")
-    elif lj.axis is None:
+    if lj.axis is None:
         problems.append(f"wheel joint '{lj.name}' has no axis")
+    elif _frame_in_root(robot, lj) is None or _frame_in_root(robot, rj) is None:
+        problems.append(f"wheels '{lj.name}' and '{rj.name}' are not in one tree with the robot's root")
     else:
         # plain floats (descgen/physics/rigid.py): validate and check run this for every diff drive,
         # and numpy costs more to import than the whole computation
         from descgen.physics import rigid
 
-        axis = rigid.rotate(rigid.rpy_rot(lj.origin.rpy), lj.axis)
+        # both wheel joints in the root's frame, every joint at zero: a wheel may hang from its
+        # own link (a wheel-drop suspension, iRobot Create 3), the controller sees only the two
+        # wheels' contact line; from one parent link this is the distance in that link's frame
+        fl, fr = _frame_in_root(robot, lj), _frame_in_root(robot, rj)
+        assert fl is not None and fr is not None
+        axis = rigid.rotate(fl[0], lj.axis)
         n = rigid.norm(axis)
         if n > 0:
-            gap = tuple(a - b for a, b in zip(lj.origin.xyz, rj.origin.xyz, strict=True))
+            gap = tuple(a - b for a, b in zip(fl[1], fr[1], strict=True))
             separation = abs(rigid.dot(gap, tuple(c / n for c in axis)))
     radii = [wheel_radius(robot, j) for j in (lj, rj)]
     radius = radii[0]
@@ -64,6 +68,24 @@ def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
     elif radii[1] is not None and not math.isclose(radii[0] or 0, radii[1], rel_tol=1e-9):
         problems.append(f"left and right wheel radii differ ({radii[0]:.6g} m, {radii[1]:.6g} m)")
     return DiffDriveGeometry(separation, radius, tuple(problems))
+
+
+def _frame_in_root(robot: Robot, j: Joint) -> Frame | None:
+    """The frame of joint ``j`` (its origin) in the root link's frame with every joint at zero;
+    None when its parent link does not lead to the root."""
+    from descgen.physics import rigid
+
+    f = rigid.frame(j.origin.xyz, j.origin.rpy)
+    link, seen = j.parent, set()
+    root = robot.root()
+    while link is not None and link != root:
+        above = robot.parent_joint(link)
+        if above is None or link in seen:
+            return None
+        seen.add(link)
+        f = rigid.compose(rigid.frame(above.origin.xyz, above.origin.rpy), f)
+        link = above.parent
+    return f if link is not None else None
 
 
 def wheel_params(robot: Robot, c: Controller) -> dict[str, float]:

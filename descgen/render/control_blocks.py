@@ -34,6 +34,7 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
             {
                 "name": b.name,
                 "type": b.type,
+                "is_async": b.is_async,
                 "plugin": b.plugin,
                 "params": params(b.params),
                 # the Xacro chooses the hardware with hardware:=; a URDF is the default variant
@@ -46,7 +47,12 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
                     for c in rc.sensors
                     if in_block(rc, b, c.block)
                 ],
-                "gpios": [g for g in rc.gpios if in_block(rc, b, g.block)],
+                "gpios": [
+                    {"name": g.name, "command": g.command, "state": g.state, "params": params(g.params)}
+                    for g in rc.gpios
+                    if in_block(rc, b, g.block)
+                ],
+                "joint_params": {cj.name: params(cj.params) for cj in rc.joints if cj.params},
             }
         )
     return out

@@ -12,10 +12,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 from descgen.core import model as m
 from descgen.core import units
-from descgen.core.findings import Finding
+from descgen.core.findings import Finding, Where
 from descgen.infra.yamlsource import Document
 from descgen.spec import models as s
 from descgen.spec import parts, sensors
@@ -93,6 +94,10 @@ class Builder:
             ),
             passthrough=tuple(p.xml for p in spec.passthrough),
         )
+        if rc is not None and spec.passthrough:
+            # a Gazebo plugin kept in pass-through is the robot's, as in the description it came
+            # from: the rules that judge it (CTRL047) see it in the spec too (one verdict)
+            robot = replace(robot, ros2_control=replace(rc, sim_plugins=self._sim_plugins(spec)))
         conv.findings += duplicate_materials(self.doc, spec)
         if spec.semantic is not None:
             conv.findings += duplicate_semantics(self.doc, spec.semantic)
@@ -101,3 +106,18 @@ class Builder:
         if spec.moveit is not None:
             robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
         return robot
+
+    def _sim_plugins(self, spec: Any) -> tuple[tuple[str, Where], ...]:
+        """(filename, where) of every ``<gazebo><plugin filename>`` of the pass-through elements."""
+        from lxml import etree
+
+        out: list[tuple[str, Where]] = []
+        for i, p in enumerate(spec.passthrough):
+            try:
+                e = etree.fromstring(p.xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+            except etree.XMLSyntaxError:
+                continue  # refused with its own finding (descgen/spec/passthrough.py)
+            if e.tag == "gazebo":
+                at = self.conv.where(("passthrough", i))
+                out += [((pe.get("filename") or "").strip(), at) for pe in e.findall("plugin")]
+        return tuple(out)

@@ -451,6 +451,10 @@ class InterfaceLimitSpec(Base):
     max: Raw | None = None
 
 
+INTERFACE_PATTERN = r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*$"
+InterfaceName = Annotated[str, StringConstraints(pattern=INTERFACE_PATTERN, max_length=128)]
+
+
 JointInterfaceName = Literal["position", "velocity", "acceleration", "effort"]
 # interfaces whose params have a unit descgen knows per joint type (acceleration: name only)
 ParamInterfaceName = Literal["position", "velocity", "effort"]
@@ -477,20 +481,35 @@ class JointStateSpec(Base):
     initial_value: Raw | None = None
 
 
+Plugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")]
+# a ros2_control <param name="...">: the parser takes any string; drivers use spaces and dots
+# ("Goal Velocity" of a Dynamixel gpio). Nothing markup or xacro could read: no quote, <, & or $
+PARAM_NAME_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_ ./()-]*$"
+ParamName = Annotated[str, StringConstraints(pattern=PARAM_NAME_PATTERN, max_length=128)]
+HwParams = dict[ParamName, Annotated[str | int | float | bool, BeforeValidator(_one_line)]]
+# a <gpio name>: any identifier, a digit first too (franka's gpios are 0, 1, ...)
+GPIO_NAME_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_]*$"
+GpioName = Annotated[str, StringConstraints(pattern=GPIO_NAME_PATTERN, max_length=128)]
+
+
 class ControlJointSpec(Base):
+    """A ros2_control ``<joint>``. Its interfaces are the standard ones (whose min, max and
+    initial values have the joint's units) or any other name the hardware exports (a leg's
+    ``kp``/``kd`` gains: Jazzy's parser takes any name); ``params`` are ``<param>``s of the
+    joint itself, kept as written (e.g. a driver's per-joint id)."""
+
     name: ElementName
-    command: list[JointInterfaceName | JointCommandSpec] = []
-    state: list[JointInterfaceName | JointStateSpec] = []
+    command: list[JointInterfaceName | JointCommandSpec | InterfaceName] = []
+    state: list[JointInterfaceName | JointStateSpec | InterfaceName] = []
     initial_position: Raw | None = None
     on_limit: Literal["reject", "clip"] = "reject"
     # Jazzy's ros2_control <joint mimic="...">: unset, a URDF <mimic> joint is a mimic joint
     # (state from its leader, no command interface); false: an ordinary joint
     mimic: bool | None = None
+    params: HwParams = {}
     source: Source | None = None
 
 
-Plugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")]
-HwParams = dict[Name, Annotated[str | int | float | bool, BeforeValidator(_one_line)]]
 MOCK_PLUGIN = "mock_components/GenericSystem"
 GZ_PLUGIN = "gz_ros2_control/GazeboSimSystem"
 
@@ -578,10 +597,6 @@ class ControllerSpec(Base):
         return self
 
 
-INTERFACE_PATTERN = r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*$"
-InterfaceName = Annotated[str, StringConstraints(pattern=INTERFACE_PATTERN, max_length=128)]
-
-
 class InterfaceSpec(Base):
     """A sensor or gpio interface with its ros2_control parameters (data_type, initial_value,
     min, max: plain numbers, as ros2_control parses them)."""
@@ -594,6 +609,17 @@ class InterfaceSpec(Base):
 
 
 Iface = InterfaceName | InterfaceSpec
+# a <gpio>'s interfaces are a driver's own registers: Dynamixel's "Goal Position" (ROBOTIS's
+# open_manipulator); any such name, without quote, <, & or $
+GPIO_INTERFACE_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_ .()-]*$"
+GpioInterfaceName = Annotated[str, StringConstraints(pattern=GPIO_INTERFACE_PATTERN, max_length=128)]
+
+
+class GpioInterfaceSpec(InterfaceSpec):
+    name: GpioInterfaceName
+
+
+GpioIface = GpioInterfaceName | GpioInterfaceSpec
 
 
 class ControlSensorSpec(Base):
@@ -609,9 +635,10 @@ class ControlSensorSpec(Base):
 
 
 class GpioSpec(Base):
-    name: Name
-    command: list[Iface] = []
-    state: list[Iface] = []
+    name: GpioName
+    command: list[GpioIface] = []
+    state: list[GpioIface] = []
+    params: HwParams = {}  # <param>s of the gpio (e.g. an index), kept as written
     source: Source | None = None
 
 
@@ -621,6 +648,7 @@ class Ros2ControlBlockSpec(Base):
 
     name: Name
     type: Literal["system", "actuator", "sensor"] = "system"
+    is_async: bool | None = None  # <ros2_control is_async="...">: its own thread (Jazzy's parser)
     hardware: HardwareSpec = HardwareSpec()
     joints: list[ControlJointSpec] = []
     sensors: list[ControlSensorSpec] = []
@@ -634,6 +662,7 @@ class Ros2ControlSpec(Base):
 
     name: Name
     type: Literal["system", "actuator", "sensor"] = "system"
+    is_async: bool | None = None  # <ros2_control is_async="...">: its own thread (Jazzy's parser)
     hardware: HardwareSpec = HardwareSpec()
     update_rate: Frequency
     joints: list[ControlJointSpec] = []

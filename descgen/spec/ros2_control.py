@@ -41,7 +41,11 @@ def ros2_control(conv: Converter, rc: s.Ros2ControlSpec, links: Collection[str] 
         gpios += [_gpio(conv, g, (*path, "gpios", i), block.name) for i, g in enumerate(block.gpios)]
         hw = tuple((k, _param_text(v)) for k, v in block.hardware.params.items())
         variants = _variants(conv, block.hardware, (*path, "hardware"))
-        hardware.append(m.HardwareBlock(block.name, block.hardware.plugin, hw, conv.where(path), block.type, variants))
+        hardware.append(
+            m.HardwareBlock(
+                block.name, block.hardware.plugin, hw, conv.where(path), block.type, variants, block.is_async
+            )
+        )
         _unique_components(conv, block, path)
         _sensor_block_commands(conv, block, path)
     _blocks_agree(conv, specs, hardware)
@@ -75,6 +79,7 @@ def ros2_control(conv: Converter, rc: s.Ros2ControlSpec, links: Collection[str] 
         blocks=tuple(hardware) if rc.blocks else (),
         variants=first.variants,
         gpios=tuple(gpios),
+        is_async=first.is_async,
     )
 
 
@@ -128,7 +133,10 @@ def _joint(conv: Converter, cj: s.ControlJointSpec, p: Path_, block: str) -> m.C
             value = initial
         states.append(m.Interface(st.name, initial_value=value, data_type=st.data_type))
     mimic = None if cj.mimic is None else _param_text(cj.mimic)
-    return m.ControlJoint(cj.name, tuple(commands), tuple(states), cj.on_limit, conv.where(p), mimic, block=block)
+    params = tuple((k, _param_text(v)) for k, v in cj.params.items())
+    return m.ControlJoint(
+        cj.name, tuple(commands), tuple(states), cj.on_limit, conv.where(p), mimic, params, block=block
+    )
 
 
 def _variants(conv: Converter, hw: s.HardwareSpec, path: Path_) -> tuple[m.HardwareVariant, ...]:
@@ -177,10 +185,13 @@ def _gpio(conv: Converter, g: s.GpioSpec, path: Path_, block: str) -> m.ControlG
         _interfaces(conv, g.state, (*path, "state"), g.name),
         conv.where(path),
         block,
+        tuple((k, _param_text(v)) for k, v in g.params.items()),
     )
 
 
-def _interfaces(conv: Converter, items: list[s.Iface], path: Path_, owner: str) -> tuple[m.Interface, ...]:
+def _interfaces(
+    conv: Converter, items: list[s.Iface] | list[s.GpioIface], path: Path_, owner: str
+) -> tuple[m.Interface, ...]:
     out: list[m.Interface] = []
     for i, it in enumerate(items):
         iface = (

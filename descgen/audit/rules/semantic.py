@@ -266,7 +266,9 @@ def passive_joint_in_group(robot: Robot) -> Iterator[Finding]:
     sem = robot.semantic
     if sem is None or not sem.passive_joints:
         return
-    passive = set(sem.passive_joints)
+    # a mimic joint is no planning variable (MoveIt sets it from its leader), so a passive one in a
+    # group changes nothing: Kinova's Robotiq 2F-85 declares its four-bar's mimic joints passive
+    passive = {n for n in sem.passive_joints if (j := robot.joint(n)) is None or j.mimic is None}
     for g in sem.groups:
         found = [name for name in _own_joints(robot, g) if name in passive]
         if found:

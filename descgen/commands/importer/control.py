@@ -34,12 +34,22 @@ from descgen.physics import derive
 from descgen.read import params
 from descgen.read.controllers import Parsed, manager_view, parse_substituted
 from descgen.spec.convert import EFFORT, POSITION, VELOCITY
-from descgen.spec.models import CALIBRATABLE, INTERFACE_PATTERN, NAME_PATTERN
+from descgen.spec.models import (
+    CALIBRATABLE,
+    GPIO_INTERFACE_PATTERN,
+    GPIO_NAME_PATTERN,
+    INTERFACE_PATTERN,
+    NAME_PATTERN,
+    PARAM_NAME_PATTERN,
+)
 
 Data = dict[str, Any]
 Locate = Callable[[etree._Element], Where | None]
 
 _NAME = re.compile(NAME_PATTERN)
+_PARAM_NAME = re.compile(PARAM_NAME_PATTERN)
+_GPIO_NAME = re.compile(GPIO_NAME_PATTERN)
+_GPIO_IFACE = re.compile(GPIO_INTERFACE_PATTERN)
 _IFACE = re.compile(INTERFACE_PATTERN)
 _PLUGIN = re.compile(r"^[A-Za-z0-9_/:]+$")
 _CONTROLLER_TYPE = re.compile(r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+$")
@@ -65,11 +75,17 @@ def _number(text: str | None) -> float | None:
 # -- what the spec can express ------------------------------------------------------------------
 
 
-def _iface_problem(e: etree._Element, owner: str, names: tuple[str, ...] | None, params: tuple[str, ...]) -> str | None:
+def _iface_problem(
+    e: etree._Element,
+    owner: str,
+    names: tuple[str, ...] | None,
+    params: tuple[str, ...],
+    pattern: re.Pattern[str] | None = None,
+) -> str | None:
     name = e.get("name", "")
     if set(e.attrib) - {"name", "data_type"}:
         return f"{owner} interface '{name}' has attributes {sorted(set(e.attrib) - {'name', 'data_type'})}"
-    if (names is not None and name not in names) or (names is None and not _IFACE.match(name)):
+    if (names is not None and name not in names) or (names is None and not (pattern or _IFACE).match(name)):
         return f"{owner} has interface '{name}', which the spec does not name"
     if e.get("data_type") is not None and e.get("data_type") not in _DATA_TYPES:
         return f"{owner} interface '{name}' has data_type '{e.get('data_type')}'"
@@ -89,7 +105,13 @@ def _params_problem(e: etree._Element, owner: str) -> str | None:
     for p in e.findall("param"):
         key = p.get("name", "")
         text = (p.text or "").strip()
-        if set(p.attrib) != {"name"} or _elements(p) or not _NAME.match(key) or key in seen or _ONE_LINE.search(text):
+        if (
+            set(p.attrib) != {"name"}
+            or _elements(p)
+            or not _PARAM_NAME.match(key)
+            or key in seen
+            or _ONE_LINE.search(text)
+        ):
             return f"{owner} param '{key}' is not a plain name=value parameter the spec can hold"
         seen.add(key)
     return None
@@ -102,14 +124,21 @@ def _joint_problem(je: etree._Element, robot: m.Robot) -> str | None:
         return f"{owner} has attributes {sorted(set(je.attrib) - {'name', 'mimic'})}"
     if je.get("mimic") is not None and je.get("mimic", "").lower() not in ("true", "false"):
         return f"{owner} has mimic='{je.get('mimic')}' (ros2_control reads only true/false)"
+    if (p := _params_problem(je, owner)) is not None:
+        return p
     for c in _elements(je):
+        if c.tag == "param":
+            continue  # the joint's own params: params: of the spec's joint
         if c.tag == "command_interface":
             allowed: tuple[str, ...] = ("min", "max")
         elif c.tag == "state_interface":
             allowed = ("initial_value",)
         else:
             return f"{owner} holds <{c.tag}>, which the spec has no field for"
-        names = _PARAM_IFACES if _elements(c) else _JOINT_IFACES
+        if c.get("name", "") not in _JOINT_IFACES and not _elements(c) and set(c.attrib) == {"name"}:
+            names: tuple[str, ...] | None = None  # any other name the hardware exports (kp, kd), bare
+        else:
+            names = _PARAM_IFACES if _elements(c) else _JOINT_IFACES
         problem = _iface_problem(c, owner, names, allowed)
         if problem:
             return problem
@@ -119,8 +148,10 @@ def _joint_problem(je: etree._Element, robot: m.Robot) -> str | None:
 def problem(block: etree._Element, robot: m.Robot) -> str | None:
     """Why ``block`` cannot be written in the spec's ``ros2_control:`` (None: it can)."""
     name = block.get("name", "")
-    if set(block.attrib) - {"name", "type"}:
-        return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type'})}"
+    if set(block.attrib) - {"name", "type", "is_async"}:
+        return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type', 'is_async'})}"
+    if block.get("is_async") is not None and block.get("is_async", "").lower() not in ("true", "false"):
+        return f"the block has is_async='{block.get('is_async')}' (ros2_control reads only true/false)"
     if not _NAME.match(name):
         return f"the block name '{name}' is not a plain identifier"
     if block.get("type", "system") not in ("system", "actuator", "sensor"):
@@ -142,8 +173,10 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
         if c.tag == "joint":
             p = _joint_problem(c, robot)
         elif c.tag in ("sensor", "gpio"):
-            kinds = ("state_interface", "param") if c.tag == "sensor" else ("command_interface", "state_interface")
-            if set(c.attrib) != {"name"} or not _NAME.match(cname):
+            kinds = (
+                ("state_interface", "param") if c.tag == "sensor" else ("command_interface", "state_interface", "param")
+            )
+            if set(c.attrib) != {"name"} or not (_GPIO_NAME if c.tag == "gpio" else _NAME).match(cname):
                 p = f"{c.tag} '{cname}' has a name or attributes the spec cannot hold"
             elif any(x.tag not in kinds for x in _elements(c)):
                 p = f"{c.tag} '{cname}' holds elements other than {', '.join(kinds)}"
@@ -153,7 +186,15 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
                         q
                         for x in _elements(c)
                         if x.tag != "param"
-                        and (q := _iface_problem(x, f"{c.tag} '{cname}'", None, ("min", "max", "initial_value")))
+                        and (
+                            q := _iface_problem(
+                                x,
+                                f"{c.tag} '{cname}'",
+                                None,
+                                ("min", "max", "initial_value"),
+                                _GPIO_IFACE if c.tag == "gpio" else None,
+                            )
+                        )
                     ),
                     None,
                 )
@@ -224,13 +265,18 @@ def block_data(block: etree._Element, robot: m.Robot, w: SpecWriter, source: Cal
     hardware: Data = {"plugin": (hw.findtext("plugin") or "").strip()}
     if params := _params(hw):
         hardware["params"] = params
-    out: Data = {"name": block.get("name", ""), "type": block.get("type", "system"), "hardware": hardware}
+    out: Data = {"name": block.get("name", ""), "type": block.get("type", "system")}
+    if block.get("is_async") is not None:
+        out["is_async"] = block.get("is_async", "").lower() == "true"
+    out["hardware"] = hardware
     joints = []
     for je in block.findall("joint"):
         name = je.get("name", "")
         j: Data = {"name": name, **_interfaces(je, functools.partial(_joint_iface, w, robot, name))}
         if je.get("mimic") is not None:
             j["mimic"] = je.get("mimic", "").lower() == "true"
+        if params := _params(je):
+            j["params"] = params
         j["source"] = source(je)
         joints.append(j)
     sensors = []
@@ -243,6 +289,8 @@ def block_data(block: etree._Element, robot: m.Robot, w: SpecWriter, source: Cal
     gpios = []
     for ge in block.findall("gpio"):
         g: Data = {"name": ge.get("name", ""), **_interfaces(ge, _iface)}
+        if params := _params(ge):
+            g["params"] = params
         g["source"] = source(ge)
         gpios.append(g)
     for key, items in (("joints", joints), ("sensors", sensors), ("gpios", gpios)):
@@ -313,6 +361,7 @@ def block_differences(original: list[etree._Element], written: list[etree._Eleme
                 out.append(f"{at}/{what}: {x!r} in the description, {y!r} after the round trip")
 
         eq("type", a.get("type", "system"), b.get("type", "system"))
+        eq("is_async", (a.get("is_async") or "false").lower(), (b.get("is_async") or "false").lower())
         eq("plugin", (a.findtext("hardware/plugin") or "").strip(), (b.findtext("hardware/plugin") or "").strip())
         ha, hb = a.find("hardware"), b.find("hardware")
         eq("hardware params", _params(ha) if ha is not None else {}, _params(hb) if hb is not None else {})
@@ -321,6 +370,7 @@ def block_differences(original: list[etree._Element], written: list[etree._Eleme
         for x, y in zip(ja, jb, strict=False):
             name = x.get("name", "")
             eq(f"joint:{name}/mimic", (x.get("mimic") or "").lower() or None, y.get("mimic"))
+            eq(f"joint:{name}/params", _params(x), _params(y))
             for kind in ("command_interface", "state_interface"):
                 mine, back = _ifaces(x, kind), _ifaces(y, kind)
                 if [i[:2] for i in mine] != [i[:2] for i in back]:

@@ -18,13 +18,14 @@ package is then ``<robot>_descgen_description``, beside the upstream one (IMP014
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from descgen.codes.importer import IMP014
+from descgen.codes.importer import IMP014, IMP036
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
 from descgen.infra.safeio import within
@@ -72,40 +73,100 @@ def package_paths(
 _ABSOLUTE = re.compile(r"/[^\s\"'<>;:,]+")
 
 
+class Packages:
+    """Which package an absolute path of this machine lies in, among the packages ``search``
+    finds: the nearest folder above it holding a package.xml, when that name finds that very
+    folder (what ``$(find)`` gave). Only folders inside ``search`` are looked at, so a path of
+    the input reads nothing else."""
+
+    def __init__(self, search: Sequence[Path]) -> None:
+        self.search = list(search)
+        self.roots = [os.path.realpath(f) for f in search]
+        self.cache: dict[str, str | None] = {}
+
+    def _named(self, folder: str) -> str | None:
+        if folder not in self.cache:
+            name = manifest_name(Path(folder) / "package.xml")
+            found = find_package(name, self.search) if name else None
+            self.cache[folder] = name if found is not None and os.path.realpath(found) == folder else None
+        return self.cache[folder]
+
+    def of(self, path: str) -> tuple[str, str] | None:
+        """(package, the path inside it) of an absolute ``path``, or None."""
+        if not any(within(path, r) for r in self.roots):
+            return None
+        folder = path if os.path.isdir(path) else os.path.dirname(path)
+        while any(within(folder, r) for r in self.roots):
+            pkg = self._named(folder)
+            if pkg is not None:
+                return pkg, path[len(folder) :].lstrip("/")
+            if folder == os.path.dirname(folder):
+                break
+            folder = os.path.dirname(folder)
+        return None
+
+
 def symbolic(xml: str, search: Sequence[Path]) -> str:
     """``xml`` (a pass-through element) with every absolute path into a package written
     ``$(find pkg)/...``: what the Xacro said before it was expanded on this machine (a Gazebo
     plugin's ``<parameters>$(find pkg)/config/controllers.yaml</parameters>``), so the spec and
-    the generated package hold no path of this machine, and package.xml depends on ``pkg``.
-
-    A path counts when it lies in a folder of ``search`` and the nearest folder above it
-    holding a package.xml is the package that name finds there (what ``$(find)`` gave); only
-    folders inside ``search`` are looked at, so a path of the input reads nothing else."""
-    roots = [os.path.realpath(f) for f in search]
-    cache: dict[str, str | None] = {}
-
-    def package_of(folder: str) -> str | None:
-        if folder not in cache:
-            name = manifest_name(Path(folder) / "package.xml")
-            found = find_package(name, search) if name else None
-            cache[folder] = name if found is not None and os.path.realpath(found) == folder else None
-        return cache[folder]
+    the generated package hold no path of this machine, and package.xml depends on ``pkg``
+    (:class:`Packages` says which package a path is in)."""
+    packages = Packages(search)
 
     def replace(m: re.Match[str]) -> str:
-        path = m.group()
-        if not any(within(path, r) for r in roots):
-            return path
-        folder = os.path.dirname(path) if not os.path.isdir(path) else path
-        while any(within(folder, r) for r in roots):
-            pkg = package_of(folder)
-            if pkg is not None:
-                return f"$(find {pkg})" + path[len(folder) :]
-            if folder == os.path.dirname(folder):
-                break
-            folder = os.path.dirname(folder)
-        return path
+        found = packages.of(m.group())
+        if found is None:
+            return m.group()
+        return f"$(find {found[0]})" + (f"/{found[1]}" if found[1] else "")
 
     return _ABSOLUTE.sub(replace, xml)
+
+
+def package_meshes(robot: m.Robot, search: Sequence[Path], shown: str) -> tuple[m.Robot, list[Finding]]:
+    """``robot`` with every mesh named by an absolute path or ``file://`` that lies in a package
+    (a Xacro's ``file://$(find pkg)/meshes/x.dae`` expanded) named ``package://pkg/meshes/x.dae``,
+    and an IMP036 for each name so changed."""
+    packages = Packages(search)
+    renamed: dict[str, str] = {}
+    for lk in robot.links:
+        for shape in lk.shapes():
+            g = shape.geometry
+            if not isinstance(g, m.Mesh) or g.filename in renamed:
+                continue
+            written = g.filename.removeprefix("file://")
+            if not os.path.isabs(written):
+                continue
+            inside = packages.of(os.path.realpath(written))
+            if inside is not None and inside[1]:
+                renamed[g.filename] = f"package://{inside[0]}/{inside[1]}"
+    if not renamed:
+        return robot, []
+
+    def shape_(s: m.Visual | m.Collision) -> m.Visual | m.Collision:
+        g = s.geometry
+        if isinstance(g, m.Mesh) and g.filename in renamed:
+            return dataclasses.replace(s, geometry=dataclasses.replace(g, filename=renamed[g.filename]))
+        return s
+
+    links = tuple(
+        dataclasses.replace(
+            lk,
+            visuals=tuple(shape_(v) for v in lk.visuals),  # type: ignore[misc]
+            collisions=tuple(shape_(c) for c in lk.collisions),  # type: ignore[misc]
+        )
+        for lk in robot.links
+    )
+    found = [
+        IMP036.finding(
+            f"mesh '{old}' is written '{new}' (it lies in that package; the path is this machine's)",
+            "nothing to do: package:// finds the same file wherever the package is installed",
+            f"mesh:{new}",
+            Where(shown),
+        )
+        for old, new in renamed.items()
+    ]
+    return dataclasses.replace(robot, links=links), found
 
 
 def package_name(robot: m.Robot, where: Where) -> tuple[str | None, list[Finding]]:

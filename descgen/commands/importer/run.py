@@ -29,9 +29,10 @@ from descgen.codes.importer import (
     IMP033,
     IMP034,
     IMP035,
+    IMP037,
 )
 from descgen.commands.importer import control, variants
-from descgen.commands.importer.packages import package_name, package_paths, symbolic, with_package_name
+from descgen.commands.importer.packages import package_meshes, package_name, package_paths, symbolic, with_package_name
 from descgen.commands.importer.poses import known_poses
 from descgen.commands.importer.quantity import Units
 from descgen.commands.importer.spec import SpecWriter, number, source_name
@@ -210,6 +211,36 @@ def _quoted(text: str) -> str:
     return "concat(" + ', "\'", '.join(f"'{p}'" for p in text.split("'")) + ")"
 
 
+def _one_pair_each(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+    """The SRDF's disabled pairs, each link pair once (the first, with its reason); IMP037 for
+    each repeat left out."""
+    sem = robot.semantic
+    if sem is None:
+        return robot, []
+    seen: dict[frozenset[str], m.DisabledPair] = {}
+    found: list[Finding] = []
+    for d in sem.disabled_collisions:
+        key = frozenset((d.link1, d.link2))
+        if key in seen:
+            first = seen[key]
+            found.append(
+                IMP037.finding(
+                    f"disabled pair {d.link1}/{d.link2} (reason {d.reason}) repeats the pair disabled at "
+                    f"{first.where.file}:{first.where.line} (reason {first.reason}); the spec keeps the first",
+                    "nothing to do: MoveIt's collision matrix holds the pair once",
+                    f"semantic.disable_collisions:{d.link1}/{d.link2}",
+                    d.where,
+                )
+            )
+            continue
+        seen[key] = d
+    if not found:
+        return robot, []
+    return dataclasses.replace(
+        robot, semantic=dataclasses.replace(sem, disabled_collisions=tuple(seen.values()))
+    ), found
+
+
 def _semantic(srdf: tuple[bytes, str, Any], robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     semantic, name, found = read_srdf_text(*srdf)
     return dataclasses.replace(robot, semantic=dataclasses.replace(semantic, robot_name=name)), found
@@ -229,14 +260,19 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
         robot, materials=_inline_materials(root, robot, shown), links=_no_empty_materials(robot)
     )
     robot, report = _continuous_limits(robot)
+    # the description's own package and the folders searched: what $(find) and file:// name
+    search = [*opts.description.package_paths, package_root(path.resolve().parent)]
+    robot, absolute = package_meshes(robot, search, shown)
+    report += absolute
     if opts.description.srdf is not None:
         srdf = srdf_bytes(opts.description)  # an .srdf.xacro expanded, as the audit reads it
         robot, _ = _semantic(srdf, robot)
         robot, more_states = _finite_states(robot, srdf)
         report += more_states
+        robot, repeated = _one_pair_each(robot)
+        report += repeated
     kept, refused = passthrough.collect(root, located.get)
     # a $(find pkg) the expansion turned into this machine's path is written $(find pkg) again
-    search = [*opts.description.package_paths, package_root(path.resolve().parent)]
     kept = [dataclasses.replace(k, xml=symbolic(k.xml, search)) for k in kept]
     writer = SpecWriter(opts.units, source_name)
     ctl = control.import_control(
