@@ -96,3 +96,38 @@ FAULT_ROBOTS = [
     "pr2_description/urdf/pr2.urdf",
     "tiago_description/robots/tiago.urdf",
 ]
+
+
+# --- Xacro corpora (tests/data/xacro_corpus, tests/data/jazzy_corpus) ------------------------------
+
+_ONCE: dict[tuple[str, str], tuple[Outcome, Path]] = {}
+
+
+def imported_once(corpus: str, ident: str, path: Path, options: object) -> tuple[Outcome, Path]:
+    """(``descgen import`` of ``path`` with ``options``, the spec file it was meant for): once
+    per process and case. The spec belongs in a folder of its own away from this repository:
+    import records the package folders relative to it (package_paths: may leave the project),
+    so :func:`spec_of` writes it exactly there."""
+    import atexit
+    import shutil
+    import tempfile
+
+    from descgen.commands.importer.run import ImportOptions, import_description
+
+    if (corpus, ident) not in _ONCE:
+        folder = Path(tempfile.mkdtemp(prefix="descgen-import-"))
+        atexit.register(shutil.rmtree, folder, True)
+        spec = folder / "robot.yaml"
+        outcome = import_description(path, ImportOptions(options, spec_name=str(spec)))  # type: ignore[arg-type]
+        _ONCE[corpus, ident] = outcome, spec
+    return _ONCE[corpus, ident]
+
+
+def spec_of(done: tuple[Outcome, Path]) -> Path:
+    """The imported spec, written where import meant it to be."""
+    from descgen.commands.importer.run import write_spec
+
+    outcome, spec = done
+    if not spec.exists():
+        write_spec(spec, outcome.imported.spec_text)
+    return spec

@@ -11,7 +11,6 @@ reports on the original), and ``audit`` of the spec reports the original's codes
 from __future__ import annotations
 
 import re
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -19,9 +18,10 @@ import pytest
 import yaml
 from lxml import etree
 
-from descgen.commands.importer.run import ImportOptions, Outcome, import_description, write_spec
+from descgen.commands.importer.run import Outcome
 from descgen.read.description import Options, audit
 from descgen.read.xacro_file import expand_located
+from tests.corpus import imported_once, spec_of
 from tests.helpers import ROOT, cli
 
 CORPUS = ROOT / "tests" / "data" / "xacro_corpus"
@@ -80,18 +80,10 @@ def _options(case: Case) -> Options:
     )
 
 
-_IMPORTED: dict[str, tuple[Outcome, Path]] = {}
-
-
 def _import(case: Case) -> tuple[Outcome, Path]:
-    if case.ident not in _IMPORTED:  # one import per case for the whole module
-        # the spec lives outside this project, in a folder of its own, and records the corpus
-        # relative to itself (package_paths: may leave the project); generate and check get
-        # --package-path too, which finds the same folder
-        spec_name = Path(tempfile.mkdtemp(prefix="descgen-import-")) / "robot.yaml"
-        outcome = import_description(CORPUS / case.xacro, ImportOptions(_options(case), spec_name=str(spec_name)))
-        _IMPORTED[case.ident] = (outcome, spec_name)
-    return _IMPORTED[case.ident]
+    # the spec lives outside this project, in a folder of its own, and records the corpus relative
+    # to itself; generate and check get --package-path too, which finds the same folder
+    return imported_once("xacro", case.ident, CORPUS / case.xacro, _options(case))
 
 
 def _imported(case: Case) -> Outcome:
@@ -100,10 +92,7 @@ def _imported(case: Case) -> Outcome:
 
 def _spec(case: Case, tmp_path: Path) -> Path:
     """The imported spec, where import meant it to be (its package_paths: are relative to it)."""
-    outcome, spec = _import(case)
-    if not spec.exists():
-        write_spec(spec, outcome.imported.spec_text)
-    return spec
+    return spec_of(_import(case))
 
 
 def _generate(case: Case, tmp_path: Path) -> tuple[Path, Path]:

@@ -96,7 +96,7 @@ def mesh_file_missing(robot: Robot) -> Iterator[Finding]:
 def mesh_escapes_package(robot: Robot) -> Iterator[Finding]:
     """## What it does
     Flags a mesh path that leaves its package folder (`..` past the package root, or an
-    absolute path).
+    absolute path outside every package folder given; one inside is GEOM006).
     ## Why is this bad?
     It works on the author's machine only: installed packages cannot reach it.
     """
@@ -108,6 +108,31 @@ def mesh_escapes_package(robot: Robot) -> Iterator[Finding]:
             "use package://<pkg>/<path inside the package>",
             subject=lk.subject,
         )
+
+
+@rule("GEOM006", "mesh-absolute-path", "warning")
+def mesh_absolute_path(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Flags a mesh named by an absolute path or `file://` that lies in a package the search
+    finds: what a Xacro's `file://$(find pkg)/meshes/x.dae` expands to.
+    ## Why is this bad?
+    The description works where it is expanded, but `robot_description` then carries that
+    machine's path: RViz or MoveIt on another computer, or in a container, loads nothing.
+    `package://` is resolved by each reader against its own installed packages.
+    ## Example
+    `<mesh filename="file://$(find my_robot)/meshes/base.dae"/>`
+    ## Use instead
+    `<mesh filename="package://my_robot/meshes/base.dae"/>` (`import` writes it so: IMP036).
+    """
+    for lk, shape, name in _meshes(robot, "ok"):
+        if name.startswith("file://") or name.startswith("/"):
+            yield at(
+                "GEOM006",
+                shape,
+                f"link '{lk.name}' mesh '{name}' is this machine's absolute path into a package",
+                "write package://<pkg>/<path inside the package>: every machine resolves it against its own packages",
+                subject=lk.subject,
+            )
 
 
 @rule("GEOM005", "mesh-not-resolvable", "warning")
