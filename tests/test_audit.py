@@ -177,9 +177,17 @@ def test_xacro_with_args_find_and_meshes(tmp_path: Path) -> None:
     assert not any(code == "GEOM004" and "file://" in m for code, m in got)
     assert not any("body.stl'" in m and code == "GEOM003" for code, m in got)
     assert r.returncode == 1
-    # without the package path, $(find) cannot be answered: unusable input with a clear reason
-    r = cli("audit", str(src))
-    assert r.returncode == 2 and "package 'my_robot' not found" in r.stderr
+    # without the package path, $(find my_robot) is the file's own package, as package:// is
+    alone = cli("audit", str(src), "--xacro-arg", "reach:=2000", "--format", "json")
+    assert alone.returncode == 1
+    assert {(f["code"], f["message"]) for f in json.loads(alone.stdout)["findings"]} == {
+        (f["code"], f["message"]) for f in doc["findings"]
+    }
+    # another package found nowhere: unusable input with a clear reason
+    other = pkg / "other.urdf.xacro"
+    other.write_text(XACRO.replace("$(find my_robot)", "$(find other_pkg)"))
+    r = cli("audit", str(other))
+    assert r.returncode == 2 and "package 'other_pkg' is in no --package-path folder" in r.stderr
 
 
 def test_sarif_validates_against_the_sarif_2_1_0_schema(tmp_path: Path) -> None:

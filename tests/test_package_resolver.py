@@ -132,7 +132,29 @@ def test_the_spec_s_folders_come_before_the_command_line(tmp_path: Path) -> None
     )
     files = dict(load_spec(spec, package_paths=(tmp_path / "ws_b",)).robot.mesh_files)
     assert files == {MESH: str((recorded / "meshes" / "finger.stl").resolve())}
-    assert given.is_dir()
+    # and the command line's when the spec records none
+    spec.write_text(spec.read_text().replace("package_paths: [../../ws_a]\n", ""))
+    files = dict(load_spec(spec, package_paths=(tmp_path / "ws_b",)).robot.mesh_files)
+    assert files == {MESH: str((given / "meshes" / "finger.stl").resolve())}
+
+
+def test_the_crawl_stops_at_its_bound(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import descgen.meshes.packages as packages
+
+    src = tmp_path / "src"
+    for i in range(30):
+        (src / f"empty_{i:02d}").mkdir(parents=True)
+    _package(src / "zz_repo" / "gripper_pkg")  # after the 30 empty folders, sorted by name
+    monkeypatch.setattr(packages, "CRAWL_FOLDERS", 10)
+    monkeypatch.setattr(packages, "_crawled", {})
+    assert find_package("gripper_pkg", [src]) is None
+    monkeypatch.setattr(packages, "CRAWL_FOLDERS", 1000)
+    monkeypatch.setattr(packages, "_crawled", {})
+    assert find_package("gripper_pkg", [src]) == src / "zz_repo" / "gripper_pkg"
+    # a link loop back to the top ends at the depth bound, and the first find stands
+    (src / "zz_repo" / "loop").symlink_to(src)
+    monkeypatch.setattr(packages, "_crawled", {})
+    assert find_package("gripper_pkg", [src]) == src / "zz_repo" / "gripper_pkg"
 
 
 # --- every command --------------------------------------------------------------------------------
@@ -359,8 +381,12 @@ def test_an_absolute_mesh_is_read_only_inside_the_folders_named(tmp_path: Path) 
     desc = tmp_path / "desc" / "bot.urdf"  # its own folder: a relative name could not leave it
     desc.parent.mkdir()
     names = [f"file://{finger}", str(finger), f"file://{outside}"]
+    loose = ws / "loose" / "part.stl"  # under the folder named, in no package
+    loose.parent.mkdir()
+    shutil.copy(finger, loose)
+    names.append(f"file://{loose.resolve()}")
     status, files = resolve_names(names, desc, [ws])
-    assert status == {names[0]: "ok", names[1]: "ok", names[2]: "escapes"}
+    assert status == {names[0]: "ok", names[1]: "ok", names[2]: "escapes", names[3]: "escapes"}
     assert files[names[0]] == finger
     assert resolve_names(names[:1], desc, [])[0] == {names[0]: "escapes"}  # the folder not named
 

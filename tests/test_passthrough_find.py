@@ -18,6 +18,7 @@ PLUGIN = (
     '<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">'
     "<parameters>$(find bot_bringup)/config/controllers.yaml</parameters>"
     "<robot_param_node>$(find bot_bringup)</robot_param_node>"
+    "<uri>file://$(find bot_bringup)/config/world.sdf</uri>"
     "</plugin></gazebo>"
 )
 XACRO = f"""<?xml version="1.0"?>
@@ -65,6 +66,7 @@ def test_find_in_passthrough_is_imported_and_generated_symbolic(
     kept = [p["xml"] for p in yaml.safe_load(text)["passthrough"]]
     assert any("<parameters>$(find bot_bringup)/config/controllers.yaml</parameters>" in x for x in kept)
     assert any("<robot_param_node>$(find bot_bringup)</robot_param_node>" in x for x in kept)
+    assert any("<uri>file://$(find bot_bringup)/config/world.sdf</uri>" in x for x in kept)  # file:// kept
 
     ran = cli("generate", spec, "--package-path", src)
     assert ran.returncode == 0, ran.stderr
@@ -83,7 +85,7 @@ def test_find_in_passthrough_is_imported_and_generated_symbolic(
     # every other dollar is still data: xacro evaluates nothing else of a pass-through
     assert expanded.findtext("gazebo/note") == "costs $5, home is $(env HOME)"
     assert cli("check", spec, "--package-path", src).returncode == 0
-    assert bringup.is_dir()
+    del bringup
 
 
 @pytest.mark.parametrize(
@@ -113,3 +115,26 @@ def test_a_path_outside_the_packages_is_left_as_it_is(tmp_path: Path) -> None:
     twin.mkdir(parents=True)
     (twin / "package.xml").write_text("<package><name>bot_bringup</name></package>")
     assert symbolic(f"<p>{twin.resolve()}/x</p>", [src, tmp_path / "twin"]) == f"<p>{twin.resolve()}/x</p>"
+
+
+def test_a_find_of_the_generated_package_itself(tmp_path: Path) -> None:
+    """``$(find bot_description)`` in the description of bot_description names the original
+    package (its files), not what descgen generates: import names the generated package
+    otherwise (IMP014) and keeps the reference; a spec that names its own generated package
+    is refused at validate (SPEC066), not left to fail generate's proof."""
+    src, _ = _workspace(tmp_path)
+    xacro = src / "bot_description" / "urdf" / "bot.urdf.xacro"
+    xacro.write_text(
+        XACRO.replace("$(find bot_bringup)/config/controllers.yaml", "$(find bot_description)/config/c.yaml")
+    )
+    spec = tmp_path / "project" / "specs" / "bot.yaml"
+    ran = cli("import", xacro, "-o", spec, "--package-path", src)
+    assert ran.returncode == 0 and "IMP014" in ran.stderr, ran.stderr
+    data = yaml.safe_load(spec.read_text())
+    assert data["package"]["name"] != "bot_description"
+    assert any("$(find bot_description)/config/c.yaml" in p["xml"] for p in data["passthrough"])
+    assert cli("generate", spec, "--package-path", src).returncode == 0
+    del data["package"]
+    spec.write_text(yaml.safe_dump(data, sort_keys=False))
+    refused = cli("validate", spec, "--package-path", src)
+    assert refused.returncode == 2 and "error[SPEC066]" in refused.stderr, refused.stderr

@@ -121,3 +121,24 @@ def test_what_the_forms_do_not_take(tmp_path: Path, path: tuple[object, ...], va
     ran = cli("validate", spec)
     assert ran.returncode == 2, ran.stdout
     assert "Traceback" not in ran.stderr
+
+
+@pytest.mark.parametrize(
+    "old,new",
+    [
+        ('<param name="motor id">', '<param name="motor id&#10;">'),
+        ('<gpio name="0">', '<gpio name="0&#10;">'),
+        ('<command_interface name="Goal Position"/>', '<command_interface name="Goal Position&#10;"/>'),
+    ],
+)
+def test_a_name_with_a_line_break_stays_in_pass_through(tmp_path: Path, old: str, new: str) -> None:
+    """A name the spec cannot hold (a line break: Python's ``$`` would match before it, the
+    spec's schema does not) keeps the block verbatim in pass-through, and the import is proven."""
+    src = tmp_path / "leg.urdf"
+    assert old in URDF
+    src.write_text(URDF.replace(old, new))
+    spec = tmp_path / "specs" / "leg.yaml"
+    ran = cli("import", src, "-o", spec)
+    assert ran.returncode == 0 and "IMP021" in ran.stderr and "round trip proven" in ran.stderr, ran.stderr
+    assert "ros2_control" not in yaml.safe_load(spec.read_text())
+    assert cli("validate", spec).returncode == 0

@@ -271,6 +271,16 @@ SPEC065 = declare(
       Move or rename one of them.""",
 )
 
+SPEC066 = declare(
+    "SPEC066",
+    "passthrough-names-generated-package",
+    "error",
+    "A pass-through element names the package descgen generates ($(find pkg) or package://pkg/).",
+    """The reference would find the generated package, which holds descgen's files, not the ones the
+      description meant (a bringup's controllers file, a world). Name the package that has the file,
+      or give the generated package another name (package: {name: ...}) (docs/packages.md).""",
+)
+
 SPEC080 = declare(
     "SPEC080",
     "variants-without-mock-default",

@@ -42,6 +42,7 @@ _IGNORE = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 # thousands (a home folder given by mistake) is cut off rather than walked for minutes
 CRAWL_DEPTH = 4
 CRAWL_FOLDERS = 20_000
+_PSEUDO = frozenset(("/proc", "/sys", "/dev", "/run"))
 _crawled: dict[str, dict[str, Path]] = {}  # real folder -> package name -> folder, per process
 
 
@@ -108,10 +109,14 @@ def _crawl(folder: Path) -> dict[str, Path]:
     for _ in range(CRAWL_DEPTH):
         deeper: list[Path] = []
         for parent in level:
+            if visited > CRAWL_FOLDERS:
+                break
             for child in _subfolders(parent):
                 visited += 1
                 if visited > CRAWL_FOLDERS:
                     break
+                if os.path.realpath(child) in _PSEUDO:
+                    continue  # no packages there, and reading them can be slow or endless
                 if any((child / marker).exists() for marker in _IGNORE) or not inside(child, folder):
                     continue
                 manifest = child / "package.xml"
@@ -133,6 +138,45 @@ def _subfolders(parent: Path) -> list[Path]:
     except OSError:
         return []
     return [parent / n for n in names]
+
+
+class Owners:
+    """Which package an absolute path of this machine lies in, among the packages ``search``
+    finds: the nearest folder above its real path holding a package.xml, when that name finds
+    that very folder (what ``$(find)`` gave). Only folders inside ``search`` are looked at, so
+    a path written in an input reads nothing else (the path is resolved first: ``..`` and
+    links cannot walk out)."""
+
+    def __init__(self, search: Sequence[Path]) -> None:
+        self.search = list(search)
+        self.roots = [os.path.realpath(f) for f in search]
+        self.named: dict[str, str | None] = {}
+
+    def _package(self, folder: str) -> str | None:
+        if folder not in self.named:
+            name = manifest_name(Path(folder) / "package.xml")
+            found = find_package(name, self.search) if name else None
+            self.named[folder] = name if found is not None and os.path.realpath(found) == folder else None
+        return self.named[folder]
+
+    def of(self, path: str) -> tuple[str, str, str] | None:
+        """(package, its real folder, the path inside it) of an absolute ``path``, or None."""
+        try:
+            real = os.path.realpath(path)
+        except (OSError, ValueError):
+            return None
+        inside = [r for r in self.roots if real == r or real.startswith(r.rstrip("/") + "/")]
+        if not inside:
+            return None
+        folder = real if os.path.isdir(real) else os.path.dirname(real)
+        while any(folder == r or folder.startswith(r.rstrip("/") + "/") for r in inside):
+            pkg = self._package(folder)
+            if pkg is not None:
+                return pkg, folder, real[len(folder) :].lstrip("/")
+            if folder == os.path.dirname(folder):
+                break
+            folder = os.path.dirname(folder)
+        return None
 
 
 def package_roots(folder: Path) -> tuple[str, ...]:

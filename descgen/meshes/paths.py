@@ -27,12 +27,12 @@ from pathlib import Path
 from typing import Any
 
 from descgen.codes import Code
-from descgen.codes.spec import SPEC060, SPEC061, SPEC062, SPEC063, SPEC064, SPEC065
+from descgen.codes.spec import SPEC060, SPEC061, SPEC062, SPEC063, SPEC064, SPEC065, SPEC066
 from descgen.core.findings import Finding, Where
 from descgen.core.model import Collision, Link, Mesh, MeshState, Robot, Visual
 from descgen.core.record import record
 from descgen.infra.safeio import MIB, within
-from descgen.meshes.packages import find_package, manifest_name, package_roots
+from descgen.meshes.packages import Owners, find_package, manifest_name, package_roots
 
 MAX_MESH_BYTES = 64 * MIB  # the largest meshes of real robots are a few MB; a CAD dump may be tens
 PACKAGE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]*")  # what $(find) accepts too
@@ -64,12 +64,12 @@ def resolve(
     package_paths: Sequence[Path],
     packages: dict[str, Path | None] | None = None,
     folders: dict[str, str] | None = None,
-    absolute_in: tuple[str, ...] = (),
+    owners: Owners | None = None,
 ) -> Resolved:
     """Resolve ``name`` as written in a file whose folder is ``base``. A relative name must
     stay inside ``root``; a ``package://`` name inside its package, found in ``package_paths``
-    (in order); an absolute one (``/...``, ``file:///...``) inside one of the real folders
-    ``absolute_in`` (none for a spec, which must work on any machine). ``packages`` memoises
+    (in order); an absolute one (``/...``, ``file:///...``) inside a package ``owners`` finds
+    (none for a spec, which must work on any machine). ``packages`` memoises
     package name -> folder and ``folders`` a folder's real path across the calls of one
     description (searching the package paths and resolving every folder of a path again are
     most of the cost). Never raises for a bad name: a NUL byte, an over-long name or a link
@@ -82,7 +82,7 @@ def resolve(
             package_paths,
             {} if packages is None else packages,
             {} if folders is None else folders,
-            absolute_in,
+            owners,
         )
     except (OSError, ValueError):
         return Resolved("missing")
@@ -95,7 +95,7 @@ def _resolve(
     package_paths: Sequence[Path],
     packages: dict[str, Path | None],
     folders: dict[str, str],
-    absolute_in: tuple[str, ...] = (),
+    owners: Owners | None = None,
 ) -> Resolved:
     uri = split_package_uri(name)
     package = None
@@ -112,9 +112,11 @@ def _resolve(
         # what a Xacro's file://$(find pkg)/meshes/... expands to: fine inside a folder the user
         # named (its package is there on any machine that expands it), refused anywhere else
         written = name[len("file://") :] if name.startswith("file://") else name
-        if not absolute_in or not os.path.isabs(written):
+        owner = owners.of(written) if owners is not None and os.path.isabs(written) else None
+        if owner is None:
             return Resolved("escapes")
-        roots, target = absolute_in, os.path.realpath(written)
+        package = owner[0]
+        roots, target = (owner[1],), os.path.realpath(written)
     else:
         roots, target = (_realpath(str(root), folders),), _realpath(os.path.join(base, name), folders)
     if not any(within(target, r) for r in roots):  # the real path: a link out is caught too
@@ -179,9 +181,9 @@ def resolve_names(
     base = description.resolve().parent
     search = list(package_paths)
     root = package_root(base)  # once per description, not per mesh
-    # an absolute mesh (file://$(find pkg)/... expanded) may lie in the folders the user named
-    # or in the description's own package, as RViz's resource_retriever reads it
-    absolute_in = tuple(dict.fromkeys(os.path.realpath(f) for f in (root, *search)))
+    # an absolute mesh (file://$(find pkg)/... expanded) may lie in a package of the folders the
+    # user named or in the description's own package, as RViz's resource_retriever reads it
+    owners = Owners([*search, root])
     packages: dict[str, Path | None] = {}
     own: list[str | None] = []  # the own package's name, read once, only when a name needs it
     folders: dict[str, str] = {}
@@ -197,7 +199,7 @@ def resolve_names(
                     own.append(manifest_name(root / "package.xml"))
                 found = root if own[0] == uri[0] else None
             packages[uri[0]] = found.resolve() if found is not None else None
-        r = resolve(name, base, root, search, packages, folders, absolute_in)
+        r = resolve(name, base, root, search, packages, folders, owners)
         status[name] = r.state
         if r.state == "ok" and r.path is not None:
             files[name] = r.path
@@ -328,6 +330,17 @@ def resolve_spec(
     search += list(package_paths)
     base = spec_path.resolve().parent
     own = package_name(robot)
+    for i, kept in enumerate(getattr(spec, "passthrough", None) or []):
+        if any((ref.group(1) or ref.group(2)) == own for ref in PACKAGE_REF.finditer(kept.xml)):
+            problems.append(
+                _error(
+                    SPEC066,
+                    f"pass-through element {i + 1} names the generated package {own}",
+                    "name the package that holds the file, or give the generated package another name "
+                    "(package: {name: ...})",
+                    where(("passthrough", i)),
+                )
+            )
     found: dict[str, _Found] = {}
     copies: dict[str, tuple[Path, str]] = {}
     for ypath, name in _mesh_refs(spec):

@@ -155,6 +155,7 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
     joints = derive.interfaces_with_limits(robot)
     block_of = {cj.name: cj.block for cj in rc.joints}
     mimic = {cj.name: cj.mimic for cj in rc.joints}
+    joint_params = {cj.name: dict(cj.params) for cj in rc.joints}
     for hb in expected:
         b = written.get(hb.name)
         if b is None:
@@ -162,6 +163,8 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
         line = line_of(b)
         at = "ros2_control" if len(expected) == 1 else f"ros2_control:{hb.name}"
         d.eq(f"{at}/plugin", hb.plugin, (b.findtext("hardware/plugin") or "").strip(), line)
+        shown_async = None if hb.is_async is None else ("true" if hb.is_async else "false")
+        d.eq(f"{at}/is_async", shown_async, b.get("is_async"), line)
         d.eq(f"{at}/params", dict(hb.params), {p.get("name"): p.text or "" for p in b.findall("hardware/param")}, line)
         mine = [jt for jt in joints if in_block(rc, hb, block_of.get(jt[0], ""))]
         elements = {j.get("name"): j for j in b.findall("joint")}
@@ -172,6 +175,12 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
                 continue
             jl = line_of(e)
             d.eq(f"joint:{name}/mimic", mimic.get(name), e.get("mimic"), jl)
+            d.eq(
+                f"joint:{name}/params",
+                joint_params.get(name, {}),
+                {p.get("name"): p.text or "" for p in e.findall("param")},
+                jl,
+            )
             d.eq(f"joint:{name}/command_interfaces", [_iface(i) for i in commands], _ifaces(e, "command"), jl)
             d.eq(f"joint:{name}/state_interfaces", [_iface(i) for i in states], _ifaces(e, "state"), jl)
         sensors = [c for c in rc.sensors if in_block(rc, hb, c.block)]
@@ -187,8 +196,16 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
         gpios = [g for g in rc.gpios if in_block(rc, hb, g.block)]
         d.eq(
             f"{at}/gpios",
-            [(g.name, [_iface(i) for i in g.command], [_iface(i) for i in g.state]) for g in gpios],
-            [(g.get("name"), _ifaces(g, "command"), _ifaces(g, "state")) for g in b.findall("gpio")],
+            [(g.name, [_iface(i) for i in g.command], [_iface(i) for i in g.state], dict(g.params)) for g in gpios],
+            [
+                (
+                    g.get("name"),
+                    _ifaces(g, "command"),
+                    _ifaces(g, "state"),
+                    {p.get("name"): p.text or "" for p in g.findall("param")},
+                )
+                for g in b.findall("gpio")
+            ],
             line,
         )
         # nothing else: an element the model does not know (a stray <joint>, a <sensor> typo)

@@ -40,6 +40,7 @@ from descgen.codes.read import READ004, READ030, READ031, READ032, READ033
 from descgen.core.findings import Finding, InputError, Where
 from descgen.infra import collector
 from descgen.meshes.packages import find_package as find_package  # re-exported: importer, simulate
+from descgen.meshes.packages import manifest_name
 from descgen.read import xacro_eval as xe
 
 _LOCK = threading.RLock()
@@ -235,7 +236,10 @@ def _patched(obj: Any, **attrs: Any) -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def _find_from(package_paths: Sequence[Path], symbolic: bool = False) -> Iterator[None]:
+def _find_from(package_paths: Sequence[Path], symbolic: bool = False, own: Path | None = None) -> Iterator[None]:
+    """``$(find pkg)`` answered by the one package order (descgen/meshes/packages.py): the
+    folders given (--package-path, then the sourced environment's), then ``own``, the file's
+    own package (the nearest folder above it holding a package.xml), by the name it gives."""
     import xacro.substitution_args as sa
 
     def eval_find(pkg: str) -> str:
@@ -243,11 +247,14 @@ def _find_from(package_paths: Sequence[Path], symbolic: bool = False) -> Iterato
         if not _PACKAGE_NAME.fullmatch(pkg):
             raise LookupError(f"'{pkg}' is not a package name")
         found = find_package(pkg, package_paths)
+        if found is None and own is not None and manifest_name(own / "package.xml") == pkg:
+            found = own
         if found is None and symbolic:
             return f"$(find {pkg})"  # as the plain URDF writes it (descgen/spec/passthrough.py)
         if found is None:
             raise LookupError(
-                f"package '{pkg}' not found in --package-path {', '.join(map(str, package_paths)) or '(none)'}"
+                f"package '{pkg}' is in no --package-path folder ({', '.join(map(str, package_paths)) or 'none'}), "
+                "no sourced workspace (AMENT_PREFIX_PATH, ROS_PACKAGE_PATH) and is not the file's own package"
             )
         return str(found.resolve())
 
@@ -441,7 +448,7 @@ def expand_located(
             if not trusted:
                 _confine(box, str(top), "include")
             with contextlib.ExitStack() as stack:
-                stack.enter_context(_find_from(package_paths, symbolic_find))
+                stack.enter_context(_find_from(package_paths, symbolic_find, None if symbolic_find else roots[0]))
                 if not trusted:
                     stack.enter_context(_sandboxed(box))
                 if locate:

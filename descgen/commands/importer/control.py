@@ -85,7 +85,7 @@ def _iface_problem(
     name = e.get("name", "")
     if set(e.attrib) - {"name", "data_type"}:
         return f"{owner} interface '{name}' has attributes {sorted(set(e.attrib) - {'name', 'data_type'})}"
-    if (names is not None and name not in names) or (names is None and not (pattern or _IFACE).match(name)):
+    if (names is not None and name not in names) or (names is None and not (pattern or _IFACE).fullmatch(name)):
         return f"{owner} has interface '{name}', which the spec does not name"
     if e.get("data_type") is not None and e.get("data_type") not in _DATA_TYPES:
         return f"{owner} interface '{name}' has data_type '{e.get('data_type')}'"
@@ -108,7 +108,7 @@ def _params_problem(e: etree._Element, owner: str) -> str | None:
         if (
             set(p.attrib) != {"name"}
             or _elements(p)
-            or not _PARAM_NAME.match(key)
+            or not _PARAM_NAME.fullmatch(key)
             or key in seen
             or _ONE_LINE.search(text)
         ):
@@ -152,7 +152,7 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
         return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type', 'is_async'})}"
     if block.get("is_async") is not None and block.get("is_async", "").lower() not in ("true", "false"):
         return f"the block has is_async='{block.get('is_async')}' (ros2_control reads only true/false)"
-    if not _NAME.match(name):
+    if not _NAME.fullmatch(name):
         return f"the block name '{name}' is not a plain identifier"
     if block.get("type", "system") not in ("system", "actuator", "sensor"):
         return f"the block type is '{block.get('type')}'"
@@ -160,7 +160,7 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
     if len(hw) != 1:
         return f"the block has {len(hw)} <hardware> elements"
     plugins = hw[0].findall("plugin")
-    if len(plugins) != 1 or not _PLUGIN.match((plugins[0].text or "").strip()):
+    if len(plugins) != 1 or not _PLUGIN.fullmatch((plugins[0].text or "").strip()):
         return "the hardware plugin is missing, repeated or not a plugin name"
     if any(c.tag not in ("plugin", "param") for c in _elements(hw[0])):
         return "the hardware holds elements other than <plugin> and <param>"
@@ -176,7 +176,7 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
             kinds = (
                 ("state_interface", "param") if c.tag == "sensor" else ("command_interface", "state_interface", "param")
             )
-            if set(c.attrib) != {"name"} or not (_GPIO_NAME if c.tag == "gpio" else _NAME).match(cname):
+            if set(c.attrib) != {"name"} or not (_GPIO_NAME if c.tag == "gpio" else _NAME).fullmatch(cname):
                 p = f"{c.tag} '{cname}' has a name or attributes the spec cannot hold"
             elif any(x.tag not in kinds for x in _elements(c)):
                 p = f"{c.tag} '{cname}' holds elements other than {', '.join(kinds)}"
@@ -503,7 +503,7 @@ def read_controllers(path: Path, w: SpecWriter, launch_args: Mapping[str, str] |
         out.report.append(_not_imported(f"'{name}' (no controller type names it)", where, f"controller:{name}"))
     names = []
     for d in view.controllers:
-        if not _NAME.match(d.name) or not _CONTROLLER_TYPE.match(d.type):
+        if not _NAME.fullmatch(d.name) or not _CONTROLLER_TYPE.fullmatch(d.type):
             out.report.append(
                 _not_imported(
                     f"controller '{d.name}' of type '{d.type}' (not a plain name/type)", d.where, f"controller:{d.name}"

@@ -28,21 +28,24 @@ from typing import Any
 from descgen.codes.importer import IMP014, IMP036
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
-from descgen.infra.safeio import within
-from descgen.meshes.packages import environment, manifest_name
-from descgen.meshes.paths import PACKAGE_NAME, package_root, split_package_uri
+from descgen.meshes.packages import Owners, environment
+from descgen.meshes.paths import PACKAGE_NAME, PACKAGE_REF, package_root, split_package_uri
 from descgen.read.xacro_file import find_package
 from descgen.spec.models import rep144_problem, suggest_package_name
 
 
 def _packages(robot: m.Robot) -> list[str]:
-    """Packages named by ``package://`` meshes, in the order they are first named."""
+    """Packages named by ``package://`` meshes, then by pass-through elements (``$(find pkg)``,
+    ``package://pkg/``), in the order they are first named."""
     found: dict[str, None] = {}
     for lk in robot.links:
         for shape in lk.shapes():
             g = shape.geometry
             if isinstance(g, m.Mesh) and (uri := split_package_uri(g.filename)) and PACKAGE_NAME.fullmatch(uri[0]):
                 found.setdefault(uri[0])
+    for xml in robot.passthrough:
+        for ref in PACKAGE_REF.finditer(xml):
+            found.setdefault(ref.group(1) or ref.group(2))
     return list(found)
 
 
@@ -73,52 +76,21 @@ def package_paths(
 _ABSOLUTE = re.compile(r"/[^\s\"'<>;:,]+")
 
 
-class Packages:
-    """Which package an absolute path of this machine lies in, among the packages ``search``
-    finds: the nearest folder above it holding a package.xml, when that name finds that very
-    folder (what ``$(find)`` gave). Only folders inside ``search`` are looked at, so a path of
-    the input reads nothing else."""
-
-    def __init__(self, search: Sequence[Path]) -> None:
-        self.search = list(search)
-        self.roots = [os.path.realpath(f) for f in search]
-        self.cache: dict[str, str | None] = {}
-
-    def _named(self, folder: str) -> str | None:
-        if folder not in self.cache:
-            name = manifest_name(Path(folder) / "package.xml")
-            found = find_package(name, self.search) if name else None
-            self.cache[folder] = name if found is not None and os.path.realpath(found) == folder else None
-        return self.cache[folder]
-
-    def of(self, path: str) -> tuple[str, str] | None:
-        """(package, the path inside it) of an absolute ``path``, or None."""
-        if not any(within(path, r) for r in self.roots):
-            return None
-        folder = path if os.path.isdir(path) else os.path.dirname(path)
-        while any(within(folder, r) for r in self.roots):
-            pkg = self._named(folder)
-            if pkg is not None:
-                return pkg, path[len(folder) :].lstrip("/")
-            if folder == os.path.dirname(folder):
-                break
-            folder = os.path.dirname(folder)
-        return None
-
-
 def symbolic(xml: str, search: Sequence[Path]) -> str:
     """``xml`` (a pass-through element) with every absolute path into a package written
     ``$(find pkg)/...``: what the Xacro said before it was expanded on this machine (a Gazebo
     plugin's ``<parameters>$(find pkg)/config/controllers.yaml</parameters>``), so the spec and
     the generated package hold no path of this machine, and package.xml depends on ``pkg``
-    (:class:`Packages` says which package a path is in)."""
-    packages = Packages(search)
+    (:class:`~descgen.meshes.packages.Owners` says which package a path is in)."""
+    owners = Owners(search)
 
     def replace(m: re.Match[str]) -> str:
-        found = packages.of(m.group())
+        text = m.group()
+        path = "/" + text.lstrip("/")  # file:///x matches from its second slash: keep those before
+        found = owners.of(path)
         if found is None:
-            return m.group()
-        return f"$(find {found[0]})" + (f"/{found[1]}" if found[1] else "")
+            return text
+        return text[: len(text) - len(path)] + f"$(find {found[0]})" + (f"/{found[2]}" if found[2] else "")
 
     return _ABSOLUTE.sub(replace, xml)
 
@@ -127,7 +99,7 @@ def package_meshes(robot: m.Robot, search: Sequence[Path], shown: str) -> tuple[
     """``robot`` with every mesh named by an absolute path or ``file://`` that lies in a package
     (a Xacro's ``file://$(find pkg)/meshes/x.dae`` expanded) named ``package://pkg/meshes/x.dae``,
     and an IMP036 for each name so changed."""
-    packages = Packages(search)
+    owners = Owners(search)
     renamed: dict[str, str] = {}
     for lk in robot.links:
         for shape in lk.shapes():
@@ -137,9 +109,9 @@ def package_meshes(robot: m.Robot, search: Sequence[Path], shown: str) -> tuple[
             written = g.filename.removeprefix("file://")
             if not os.path.isabs(written):
                 continue
-            inside = packages.of(os.path.realpath(written))
-            if inside is not None and inside[1]:
-                renamed[g.filename] = f"package://{inside[0]}/{inside[1]}"
+            inside = owners.of(written)
+            if inside is not None and inside[2]:
+                renamed[g.filename] = f"package://{inside[0]}/{inside[2]}"
     if not renamed:
         return robot, []
 
@@ -179,7 +151,7 @@ def package_name(robot: m.Robot, where: Where) -> tuple[str | None, list[Finding
     if name == derived:
         return None, []
     why = (
-        f"'{derived}' is the package the meshes come from (package://{derived}/...)"
+        f"'{derived}' is a package the description names (its meshes, or $(find {derived}) in pass-through)"
         if derived in taken
         else f"'{derived}' is not a ROS package name: {rep144_problem(derived)} (REP 144)"
     )
