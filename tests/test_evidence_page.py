@@ -175,3 +175,27 @@ def test_the_documented_mock_run_still_writes_the_package_evidence(project: Path
     csv.write_text("stale\n")
     ran = cli("control", project / SPEC, "--trajectory", project / TRAJECTORY)
     assert ran.returncode == 0 and csv.read_text().startswith("time_s,joint,desired")
+
+
+def test_a_robot_without_a_camera_gets_its_page(tmp_path: Path) -> None:
+    """Issue 29: a robot with no camera has no stamped sensor message for the timestamp scenario
+    (tf-audit would say BAG010) and no camera to move 25 m in the field story: the page is still
+    written, those parts say why, and check takes it as current."""
+    (tmp_path / "specs" / "trajectories").mkdir(parents=True)
+    data = yaml.safe_load(EXAMPLE_TEXT)
+    data["sensors"] = [s for s in data["sensors"] if s["type"] != "camera"]
+    for pose in data["known_poses"]:
+        pose["frames"] = [f for f in pose["frames"] if f["frame"] != "camera_link"]
+    (tmp_path / SPEC).write_text(yaml.safe_dump(data, sort_keys=False))
+    shutil.copy(ROOT / TRAJECTORY, tmp_path / TRAJECTORY)
+    assert cli("generate", tmp_path / SPEC).returncode == 0
+    assert cli("control", tmp_path / SPEC, "--trajectory", tmp_path / TRAJECTORY).returncode == 0
+    ran = cli("report", tmp_path / SPEC)
+    assert ran.returncode == 0, ran.stderr
+    page = page_of(tmp_path)
+    sections = dict(re.findall(r"^## (\d)\. (.*?)(?=^## \d\. |\Z)", page, re.M | re.S))
+    verdicts = {n: re.findall(r"^\*\*Verdict: ([A-Z ]+)\*\*", text, re.M) for n, text in sections.items()}
+    assert verdicts["5"] == ["NOT APPLICABLE"] and "no camera" in sections["5"]
+    assert all(v == ["PASS"] for n, v in verdicts.items() if n != "5"), verdicts
+    assert "not plantable" in sections["9"]  # the story's camera fault has no camera to move
+    assert cli("check", tmp_path / SPEC).returncode == 0

@@ -410,3 +410,17 @@ def test_the_corpus_is_as_its_readme_says() -> None:
     assert sum(p.stat().st_size for p in files) < 3_000_000
     meshes = [p for p in files if p.suffix.lower() in (".stl", ".dae")]
     assert meshes and all(p.stat().st_size < 10_000 for p in meshes)
+
+
+@pytest.mark.parametrize("case", _params(), ids=lambda c: c.ident)
+def test_the_imported_spec_validates_against_the_json_schema(case: Case) -> None:
+    """Issue 29: the published JSON Schema (what editors check a spec with) accepts every spec
+    import writes, checked by a real JSON Schema validator."""
+    import jsonschema
+
+    schema = json.loads((ROOT / "specs" / "descgen-spec.schema.json").read_text())
+    data = yaml.safe_load(_imported(case).imported.spec_text)
+    errors = [
+        f"{list(e.absolute_path)}: {e.message[:200]}" for e in jsonschema.Draft202012Validator(schema).iter_errors(data)
+    ]
+    assert errors == []

@@ -158,6 +158,11 @@ def _verdict(ok: bool, text: str) -> str:
     return f"**Verdict: {'PASS' if ok else 'FAIL'}**: {text}"
 
 
+def _not_applicable(why: str) -> str:
+    """A section that does not apply to this robot: neither a pass nor a failure of the page."""
+    return f"**Verdict: NOT APPLICABLE**: {why}"
+
+
 # -- the sections ---------------------------------------------------------------------------
 
 
@@ -230,8 +235,21 @@ def _frames(package: Path, files: dict[str, str]) -> list[str]:
 
 def _timestamps(robot: Any) -> list[str]:
     from descgen.commands.tf.bagaudit import audit
-    from descgen.commands.tf.scenario import FAULTS, WINDOWS, write
+    from descgen.commands.tf.scenario import FAULTS, WINDOWS, plan, write
 
+    if plan(robot).camera_frame is None:
+        # the scenario's only stamped sensor message is the camera's: without one there is nothing
+        # to look up, and the section says so instead of failing the page (tf-audit's BAG010)
+        return [
+            "## 5. Timestamp failures",
+            "",
+            "Not run: the robot has no camera (a `sensors:` entry of type camera), and the scenario's "
+            "stamped sensor messages are a camera's. To run it, add the camera to the spec's `sensors:`; "
+            f"for any sensor, record the robot and run `descgen tf-audit BAG --target {TARGET_FRAME}`.",
+            "",
+            _not_applicable("the robot has no camera to stamp messages with"),
+            "",
+        ]
     with tempfile.TemporaryDirectory(prefix="descgen-report-") as tmp:
         bag = Path(tmp) / "scenario"
         write(robot, bag, FAULTS, 10.0, "mcap")
@@ -370,8 +388,14 @@ def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
     results = plant_all(robot)
     applicable = [r for r in results if r.applicable]
     lines += ["", "`descgen faults SPEC`, the whole catalogue:", "", *_block(cli_format.faults_text(results), "text")]
-    all_caught = all(c.by is not None for c in caught) and all(r.caught for r in applicable)
-    lines += [_verdict(all_caught, "every planted fault was caught by its expected finding"), ""]
+    # a fault this robot has no place for (no camera to move 25 m) is listed as not plantable; it is
+    # neither caught nor missed
+    planted = [c for c in caught if c.planted]
+    all_caught = all(c.by is not None for c in planted) and all(r.caught for r in applicable)
+    if not planted and not applicable:
+        lines += [_not_applicable("no fault of the story or the catalogue can be planted in this robot"), ""]
+    else:
+        lines += [_verdict(all_caught, "every planted fault was caught by its expected finding"), ""]
     return lines
 
 

@@ -89,9 +89,12 @@ def findings(robot: Robot, rows: list[Row] | None = None) -> list[Finding]:
             continue  # an unknown frame is an input error (POSE002)
         fm, kp = row.measurement, row.pose
         joints = path_joints(robot, fm.frame, fm.relative_to)
+        # as many digits as the tolerance judges, so the model's value can be pasted as the fix
+        d = display.mm_digits(fm.tolerance)
         message = (
-            f"known pose '{kp.name}': {fm.frame} measured at {_mm(fm.xyz)} but the model puts it at {_mm(row.model)} "
-            f"(off by {row.worst * 1000:.1f} mm on one axis, tolerance {fm.tolerance * 1000:g} mm"
+            f"known pose '{kp.name}': {fm.frame} measured at ({display.mm(fm.xyz, d)}) mm but the model puts it at "
+            f"({display.mm(row.model, d)}) mm "
+            f"(off by {row.worst * 1000:.{d}f} mm on one axis, tolerance {fm.tolerance * 1000:g} mm"
             f"{'; source ' + fm.source if fm.source else ''}); joints on the path: {', '.join(joints) or 'none'}"
         )
         out.append(

@@ -25,7 +25,11 @@ QUANTITY_SCHEMA: dict[str, Any] = {
         {"type": "number", "const": 0},
         {
             "type": "object",
-            "properties": {"value": {"type": "string"}, "source": {"type": "string"}},
+            # {value: 0, source: ...} as import writes a zero (a bare 0 needs no unit)
+            "properties": {
+                "value": {"anyOf": [{"type": "string"}, {"type": "number", "const": 0}]},
+                "source": {"type": "string"},
+            },
             "required": ["value"],
             "additionalProperties": False,
         },
@@ -220,7 +224,14 @@ _JOINT_VALUE_SCHEMA: dict[str, Any] = {
         {"type": "array", "items": {"anyOf": [{"type": "string"}, {"type": "number"}]}, "minItems": 1},
         {
             "type": "object",
-            "properties": {"value": {"type": "array"}, "source": {"type": "string"}},
+            "properties": {
+                "value": {
+                    "type": "array",
+                    "items": {"anyOf": [{"type": "string"}, {"type": "number"}]},
+                    "minItems": 1,
+                },
+                "source": {"type": "string"},
+            },
             "required": ["value"],
             "additionalProperties": False,
         },
