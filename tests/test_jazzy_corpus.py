@@ -317,15 +317,20 @@ def test_import_keeps_every_controller(case: Case) -> None:
 
 
 @pytest.mark.parametrize("case", _params("check"))
-def test_generate_and_check_fail_only_at_the_reviewed_defects(case: Case, tmp_path: Path) -> None:
+def test_generate_and_check_pass_with_the_reviewed_defects_waived(case: Case, tmp_path: Path) -> None:
+    """Import writes a waiver for each defect of the original (IMP038), so generate and check
+    pass at once; every error they print is waived, and of a code reviewed by hand above."""
     spec = _spec(case)
     allowed = case.reviewed | set(case.in_spec)
+    waivers = yaml.safe_load(spec.read_text()).get("waivers", [])
+    assert {w["code"] for w in waivers} <= allowed
+    assert all(w["reason"] == "imported as is" for w in waivers)
     out = tmp_path / "gen"
     for command in ("generate", "check"):
         ran = cli(command, spec, "--out", out, "--package-path", CORPUS, cwd=tmp_path)
-        errors = _error_codes(ran.stderr)
-        assert errors <= allowed, (command, sorted(errors - allowed), ran.stderr[-2000:])
-        assert ran.returncode == (2 if errors else 0), (command, ran.stderr[-2000:])
+        assert ran.returncode == 0, (command, ran.stderr[-2000:])
+        assert _error_codes(ran.stderr) <= allowed, command
+        assert ran.stderr.count("  waived: imported as is") == len(re.findall(r"error\[\w+\]", ran.stderr)), command
 
 
 # --------------------------------------------------------------------------- (e) the same robot

@@ -4,13 +4,41 @@ the whole of ``descgen validate``. What every command that takes a spec calls.""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import partial
 from pathlib import Path
 
-from descgen.audit.registry import run
+from descgen.audit.registry import RULES, load, run
+from descgen.audit.waivers import applied
+from descgen.core.findings import Finding
+from descgen.core.model import Robot
 from descgen.spec.load import Loaded, read_spec, read_spec_text
 
-INPUT_RULES = partial(run, stage="input")
+
+def input_stage(code: str) -> bool:
+    """Whether ``validate`` judges ``code``: an input-stage rule (the rest is generate's)."""
+    load()
+    info = RULES.get(code)
+    return info is not None and info.stage == "input"
+
+
+def check_stage(code: str) -> bool:
+    """Whether ``generate``/``check`` judge ``code``: a check-stage rule (POSE010)."""
+    load()
+    info = RULES.get(code)
+    return info is not None and info.stage == "check"
+
+
+def _validate_judges(code: str) -> bool:
+    # validate also judges a waiver of a code no rule has (a proof's, an input error's): it can
+    # never match, so it is reported unused at once
+    return input_stage(code) or not check_stage(code)
+
+
+def _input_rules(robot: Robot) -> list[Finding]:
+    """The input-stage rules over ``robot``, with the spec's waivers of those codes applied."""
+    return applied(run(robot, stage="input"), robot.waivers, _validate_judges)
+
+
+INPUT_RULES = _input_rules
 
 
 def load_spec(

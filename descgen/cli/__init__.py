@@ -35,7 +35,7 @@ def exit_code(findings: Sequence[Finding], input_error: bool = False, strict: bo
     if input_error:
         return EXIT_INPUT
     bad = {"error", "warning"} if strict else {"error"}
-    return EXIT_FAILED if any(f.severity in bad for f in findings) else EXIT_OK
+    return EXIT_FAILED if any(f.severity in bad and f.waived is None for f in findings) else EXIT_OK
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
@@ -64,7 +64,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     elif args.format == "junit":
         sys.stdout.write(report.junit("validate", per_spec))
     elif failed:
-        sys.stderr.write(report.text(f for f in all_findings if f.severity == "error"))
+        sys.stderr.write(report.text(f for f in all_findings if f.blocks))
     return EXIT_INPUT if failed else EXIT_OK
 
 
@@ -165,11 +165,12 @@ def _cmd_view(args: argparse.Namespace) -> int:
 
 def _cmd_poses(args: argparse.Namespace) -> int:
     from descgen.audit.spec import load_spec
+    from descgen.audit.waivers import waive
     from descgen.physics.poses import evaluate, findings
 
     loaded = load_spec(args.spec, package_paths=_packages(args))
     rows = evaluate(loaded.robot)
-    found = findings(loaded.robot, rows)
+    found = waive(findings(loaded.robot, rows), loaded.robot.waivers)
     if args.format == "json":
         sys.stdout.write(report.as_json(found, poses=cli_format.poses_json(rows)))
     else:
@@ -261,7 +262,9 @@ def _cmd_import(args: argparse.Namespace) -> int:
     from descgen.commands.importer.variants import Variant
 
     variants = tuple(Variant(n, a) for n, a in args.variant or [])
-    opts = ImportOptions(_description_options(args), args.units, str(out) if out else "imported.yaml", variants)
+    opts = ImportOptions(
+        _description_options(args), args.units, str(out) if out else "imported.yaml", variants, not args.no_waivers
+    )
     result = import_description(Path(args.path), opts)
     imp = result.imported
     sys.stderr.write(report.text(imp.audit + imp.report + result.invalid + imp.differences))
@@ -585,6 +588,11 @@ def parser() -> argparse.ArgumentParser:
         "--units", type=types.import_units, default=types.import_units("mm,deg,kg"), help="mm,deg,kg (default) or si"
     )
     im.add_argument("--force", action="store_true", help="replace an existing -o file")
+    im.add_argument(
+        "--no-waivers",
+        action="store_true",
+        help="do not write a waiver for each defect of the description (then validate fails at them)",
+    )
     im.add_argument(
         "--variant",
         action="append",

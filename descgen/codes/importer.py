@@ -301,3 +301,15 @@ IMP037 = declare(
       a spec names each pair once (SPEC024), so import keeps the first with its reason and says which
       line it left out.""",
 )
+
+IMP038 = declare(
+    "IMP038",
+    "import-waivers-written",
+    "info",
+    "The description has defects the spec's rules report as errors; import writes a waiver for each "
+    "(reason 'imported as is'), so validate, generate, check and report work at once.",
+    """The spec is the description as it is, defects included, and the defects are still reported,
+      as waived, in every output and on the evidence page: the list of what is left to fix. Remove a
+      waiver when its defect is fixed (an unused waiver is SPEC130). Input errors (a spec that cannot be
+      built) and descgen's own proofs are never waived.""",
+)

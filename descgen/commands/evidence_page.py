@@ -204,17 +204,18 @@ def _validation(spec: Path, shown: str, package_paths: tuple[Path, ...]) -> tupl
 
     loaded = load_spec(spec, display=shown, package_paths=package_paths)
     text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
-    ok = not any(f.severity == "error" for f in loaded.findings)
+    ok = not any(f.blocks for f in loaded.findings)
     lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
     lines += [_verdict(ok, "the spec is valid"), ""]
     return lines, loaded.robot
 
 
 def _poses(robot: Any, package: Path) -> list[str]:
+    from descgen.audit.waivers import waive
     from descgen.physics.poses import evaluate, findings
 
     rows = evaluate(robot)
-    bad = [f for f in findings(robot, rows) if f.severity == "error"]
+    bad = [f for f in waive(findings(robot, rows), robot.waivers) if f.blocks]
     lines = ["## 3. Known poses", "", f"Table: {_link(package, 'evidence/known_poses.md')}.", ""]
     lines += _block(cli_format.poses_table(rows), "text")
     # one picture per pose (model dots, measured crosses); check compares their inputs, not PNG bytes
@@ -537,6 +538,6 @@ def write(package: Path, page: str) -> Path:
 
 def check_lines(spec_shown: str, findings: Sequence[Finding], diff: str) -> tuple[str, str]:
     """(stdout, stderr) that ``descgen check`` prints for this outcome, as in cli._cmd_check."""
-    failed = any(f.severity == "error" for f in findings)
+    failed = any(f.blocks for f in findings)
     out = diff + ("" if failed else f"{spec_shown}: generated files are up to date and every check passed\n")
     return out, report.text(findings)

@@ -42,6 +42,14 @@ class Finding:
     hint: str = ""
     subject: str = ""
     where: Where = field(default_factory=lambda: Where("<unknown>"))
+    # the reason of the spec's waiver that matched this finding (code and subject): still
+    # reported, everywhere, but it fails nothing (descgen/audit/waivers.py)
+    waived: str | None = None
+
+    @property
+    def blocks(self) -> bool:
+        """An error that fails the command: not waived."""
+        return self.severity == "error" and self.waived is None
 
     @property
     def related(self) -> tuple[Where, ...]:
@@ -59,6 +67,8 @@ class Finding:
             "message": self.message,
             "hint": self.hint,
         }
+        if self.waived is not None:  # only then: documents without waivers keep their shape
+            out["waived"] = self.waived
         if self.related:  # only then: documents written before the call chain keep their shape
             out["related"] = [
                 {"file": w.file, "line": w.line, "col": w.col, "message": "macro called here"} for w in self.related
@@ -78,11 +88,16 @@ class InputError(Exception):
 
 
 def errors(findings: Iterable[Finding]) -> list[Finding]:
-    return [f for f in findings if f.severity == "error"]
+    """The errors that fail a command (a waived one does not)."""
+    return [f for f in findings if f.blocks]
 
 
 def summary(findings: Iterable[Finding]) -> dict[str, int]:
+    """Findings by severity; waived ones on their own (the key only when there are some)."""
     out: dict[str, int] = dict.fromkeys(SEVERITIES, 0)
     for f in findings:
-        out[f.severity] += 1
+        if f.waived is not None:
+            out["waived"] = out.get("waived", 0) + 1
+        else:
+            out[f.severity] += 1
     return out

@@ -523,6 +523,17 @@ class MoveItSettings:
 
 
 @record
+class Waiver:
+    """A finding the team accepts for now (spec ``waivers:``): its code and subject exactly as
+    findings print them, and why. The finding is still reported, as waived; it fails nothing."""
+
+    code: str
+    subject: str
+    reason: str
+    where: Where = NOWHERE
+
+
+@record
 class Robot:
     name: str
     links: tuple[Link, ...] = ()
@@ -557,6 +568,8 @@ class Robot:
     moveit: MoveItSettings | None = None
     # a MoveIt config package read with the robot (``audit --moveit-config``; the MOVEIT rules)
     moveit_config: MoveItConfig | None = None
+    # the spec's ``waivers:`` (descgen/audit/waivers.py); empty for a description
+    waivers: tuple[Waiver, ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

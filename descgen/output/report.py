@@ -51,6 +51,8 @@ def text(findings: Iterable[Finding]) -> str:
     for f in findings:
         lines.append(f"{printable(f.where)}: {f.severity}[{f.code}]: {printable(f.message)}")
         lines.extend(f"  in macro called from {printable(w)}" for w in f.related)
+        if f.waived is not None:  # still shown, with why it fails nothing
+            lines.append(f"  waived: {printable(f.waived)}")
         if f.hint:
             lines.append(f"  hint: {printable(f.hint)}")
     return "\n".join(lines) + ("\n" if lines else "")
@@ -108,6 +110,10 @@ def sarif(findings: Iterable[Finding], base: str | None = None) -> str:
                 }
             ],
         }
+        if f.waived is not None:
+            # a spec's waiver (SARIF 3.35: a suppression in the source, the reason as justification):
+            # code scanning shows it as dismissed, not as an open alert
+            result["suppressions"] = [{"kind": "inSource", "justification": f.waived}]
         if f.related:
             # the macro calls, innermost first; ids are unique within the result (SARIF 3.28.2)
             result["relatedLocations"] = [
@@ -185,7 +191,7 @@ def junit(command: str, suites: Iterable[tuple[str, Iterable[Finding], str]], st
                 line=str(f.where.line),
             )
             body = _xml_text(text([f]))
-            if f.severity in failing:
+            if f.severity in failing and f.waived is None:
                 failure = ET.SubElement(case, "failure", type=f.severity, message=_xml_text(f.message))
                 failure.text = body
                 failed += 1

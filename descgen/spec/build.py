@@ -93,6 +93,9 @@ class Builder:
                 for i, js in enumerate(spec.frames.joint_state_sources)
             ),
             passthrough=tuple(p.xml for p in spec.passthrough),
+            waivers=tuple(
+                m.Waiver(w.code, w.subject, w.reason, conv.where(("waivers", i))) for i, w in enumerate(spec.waivers)
+            ),
         )
         if rc is not None and spec.passthrough:
             # a Gazebo plugin kept in pass-through is the robot's, as in the description it came

@@ -104,7 +104,7 @@ def from_document(doc: Document, rules: Rules | None = None, place: _Place | Non
     problems += errors(findings)
     if problems:
         raise InputError(_ordered(_unique(problems)))
-    return Loaded(robot, spec, doc, tuple(f for f in findings if f.severity != "error"))
+    return Loaded(robot, spec, doc, tuple(f for f in findings if not f.blocks))  # a waived error stays reported
 
 
 def _build(

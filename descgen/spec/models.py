@@ -970,6 +970,16 @@ RobotName = Annotated[
 ]
 
 
+class WaiverSpec(Base):
+    """A finding the team accepts for now: ``code`` and ``subject`` exactly as findings print
+    them (``INER004``, ``link:finger``), and why. The finding is still reported, as waived,
+    in every output; it fails no command. A waiver that matches nothing is a warning."""
+
+    code: Annotated[str, StringConstraints(pattern=r"^[A-Z]+[0-9]{3}$")]
+    subject: Annotated[OneLine, StringConstraints(min_length=1, max_length=400)]
+    reason: Annotated[OneLine, StringConstraints(min_length=1, max_length=400)]
+
+
 class RobotSpec(Base):
     """One robot. See specs/warehouse_arm.yaml for a complete example."""
 
@@ -997,6 +1007,7 @@ class RobotSpec(Base):
     templates: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)] | None = None
     passthrough: list[PassthroughSpec] = []
     moveit: MoveItSpec | None = None
+    waivers: list[WaiverSpec] = []
 
 
 __all__ = ["Measured", "RobotSpec"]

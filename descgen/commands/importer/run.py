@@ -30,6 +30,7 @@ from descgen.codes.importer import (
     IMP034,
     IMP035,
     IMP037,
+    IMP038,
 )
 from descgen.commands.importer import control, variants
 from descgen.commands.importer.packages import package_meshes, package_name, package_paths, symbolic, with_package_name
@@ -55,6 +56,7 @@ class ImportOptions:
     units: Units = field(default_factory=Units)
     spec_name: str = "robot.yaml"  # the spec's file name, for messages about it
     variants: tuple[variants.Variant, ...] = ()  # --variant: hardware variants of a Xacro
+    waive: bool = True  # write a waiver for each defect of the description (IMP038); --no-waivers: not
 
 
 @dataclass(frozen=True)
@@ -577,11 +579,65 @@ def import_description(path: Path, opts: ImportOptions) -> Outcome:
         opts, hv = expand_variants(path, opts)
     outcome = _proved(describe(opts, path, hv=hv))
     if outcome.proven or not outcome.imported.structured:
-        return outcome
+        return _waived(outcome, opts)
     flat = _proved(describe(opts, path, structured=False, hv=hv))
     if not outcome.invalid:
         flat.imported.report.append(_unstructured(len(outcome.imported.differences), Where(opts.spec_name)))
-    return flat
+    return _waived(flat, opts)
+
+
+WAIVER_REASON = "imported as is"
+
+
+def _waived(outcome: Outcome, opts: ImportOptions) -> Outcome:
+    """A proven import whose spec the rules reject at the description's own defects gets a
+    waiver for each (code, subject), reason "imported as is" (IMP038): validate, generate and
+    check then pass, and every defect is still reported, as waived. Input errors (the spec
+    cannot be built) and descgen's proofs are never waived (descgen/audit/waivers.py)."""
+    from descgen.audit.registry import RULES, run
+    from descgen.audit.spec import check_stage, load_spec_text
+
+    if not outcome.proven or not opts.waive:
+        return outcome
+    imp = outcome.imported
+    keys: dict[tuple[str, str], None] = {}
+    text = imp.spec_text
+    for _ in range(2):  # the input stage's errors, then (the spec now loads) the check stage's
+        try:
+            loaded = load_spec_text(text, imp.spec_name)
+        except InputError as exc:
+            new = [(f.code, f.subject) for f in exc.findings if f.blocks and f.code in RULES]
+            if not new or any(f.blocks and f.code not in RULES for f in exc.findings):
+                return outcome  # an input error no waiver may hide: as before (validate says why)
+            keys.update(dict.fromkeys(new))
+            text = _with_waivers(imp.spec_text, keys)
+            continue
+        later = [(f.code, f.subject) for f in run(loaded.robot, stage="check") if f.blocks and check_stage(f.code)]
+        if not later or all(k in keys for k in later):
+            break
+        keys.update(dict.fromkeys(later))
+        text = _with_waivers(imp.spec_text, keys)
+    if not keys:
+        return outcome
+    imp.spec_text = text
+    codes = sorted({code for code, _ in keys})
+    imp.report.append(
+        IMP038.finding(
+            f"{len(keys)} waiver(s) written for the description's defects ({', '.join(codes)}); "
+            "each is still reported, as waived",
+            "fix a defect in the spec and remove its waiver; descgen audit of the original lists them too",
+            "waivers",
+            Where(imp.spec_name),
+        )
+    )
+    return outcome
+
+
+def _with_waivers(spec_text: str, keys: dict[tuple[str, str], None]) -> str:
+    import yaml
+
+    block = [{"code": code, "subject": subject, "reason": WAIVER_REASON} for code, subject in keys]
+    return spec_text.rstrip("\n") + "\n\n" + yaml.safe_dump({"waivers": block}, sort_keys=False, width=1000)
 
 
 def _proved(imported: Imported) -> Outcome:
