@@ -158,6 +158,29 @@ def _verdict(ok: bool, text: str) -> str:
     return f"**Verdict: {'PASS' if ok else 'FAIL'}**: {text}"
 
 
+def _waivers(robot: Any) -> list[str]:
+    """The spec's waivers, when it has any: what is accepted for now, and why (a section of its
+    own, so a reviewer sees what is left to fix; every waived finding is also printed above)."""
+    if not robot.waivers:
+        return []
+    md = _md()
+    lines = [
+        "## 10. Waivers",
+        "",
+        "Findings the spec accepts for now (`waivers:`); every command still reports each one, marked waived:",
+        "",
+        "| code | subject | reason |",
+        "|---|---|---|",
+    ]
+    lines += [f"| {md.mdspan(w.code)} | {md.mdspan(w.subject)} | {md.mdtext(w.reason)} |" for w in robot.waivers]
+    lines += [
+        "",
+        f"**Verdict: WAIVED**: {len(robot.waivers)} waiver(s); fix each finding and remove its waiver",
+        "",
+    ]
+    return lines
+
+
 def _not_applicable(why: str) -> str:
     """A section that does not apply to this robot: neither a pass nor a failure of the page."""
     return f"**Verdict: NOT APPLICABLE**: {why}"
@@ -436,6 +459,7 @@ def build(
         *dvm,
         *_transcript(spec, shown, check_out, n, simulate, robot, package_paths),
         *_field_story(spec, shown, robot),
+        *_waivers(robot),
     ]
     page = _relative("\n".join(parts).rstrip("\n") + "\n", package)
     return page if key is None else page + f"<!-- {evidence_hash.stamp(key, comparable(page))} -->\n"
