@@ -529,6 +529,12 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("import", "--output", ["import", NOSPEC, "--output", ""], "argument -o/--output: an empty path names nothing"),
     ("import", "--units", ["import", NOSPEC, "--units", "mm,furlong"], "error[IMP008]: --units: 'furlong'"),
     ("import", "--force", ["import", NOSPEC, "--force=yes"], "argument --force: ignored explicit argument 'yes'"),
+    (
+        "import",
+        "--no-waivers",
+        ["import", NOSPEC, "--no-waivers=yes"],
+        "argument --no-waivers: ignored explicit argument 'yes'",
+    ),
     ("import", "--variant", ["import", NOSPEC, "--variant", "sim:use_gazebo:=true"], "error[IMP027]: --variant"),
     ("faults", "path", ["faults", "{tmp}/none.urdf"], "error[READ001]"),
     ("faults", "--srdf", ["faults", SPEC, "--srdf", "{tmp}"], "error[READ040]"),

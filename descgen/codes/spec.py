@@ -515,6 +515,16 @@ SPEC127 = declare(
     """rot_x..rot_w have no unit; a text such as "1 deg" or "a" would be a guess about what was meant.""",
 )
 
+SPEC130 = declare(
+    "SPEC130",
+    "waiver-unused",
+    "warning",
+    "A waiver in the spec matches no finding (its code and subject, exactly as findings print them).",
+    """A waiver that waives nothing hides nothing today, but it would silently accept a new finding
+      of that code and subject tomorrow, and a typo in it means the finding it was written for still
+      fails. Remove it, or copy the code and subject from the finding (as ruff reports an unused noqa).""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",
@@ -617,14 +627,4 @@ YAML010 = declare(
     "The named spec is a FIFO, device, socket or folder.",
     """Reading a FIFO or a device can block forever or never end, so it is refused before it is
       opened (docs/security.md). Name a regular file.""",
-)
-
-SPEC130 = declare(
-    "SPEC130",
-    "waiver-unused",
-    "warning",
-    "A waiver in the spec matches no finding (its code and subject, exactly as findings print them).",
-    """A waiver that waives nothing hides nothing today, but it would silently accept a new finding
-      of that code and subject tomorrow, and a typo in it means the finding it was written for still
-      fails. Remove it, or copy the code and subject from the finding (as ruff reports an unused noqa).""",
 )
