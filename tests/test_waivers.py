@@ -85,9 +85,9 @@ def _line_of_waiver(spec: Path, index: int) -> int:
     return items[index] + 1
 
 
-def test_a_check_stage_code_is_judged_by_generate_not_validate(tmp_path: Path) -> None:
-    """POSE010 (a known pose off its forward kinematics) is a check-stage rule: validate does
-    not run it, so it neither matches nor calls its waiver unused; generate and check do both."""
+def test_a_check_stage_code_is_judged_by_validate_and_generate(tmp_path: Path) -> None:
+    """POSE010 (a known pose off its forward kinematics) is a check-stage rule; validate runs it
+    too (issue 29: "valid" means generate's rules pass), and both honour its waiver."""
     # the camera measured 5 mm off in the 'ready' pose
     text = EXAMPLE_TEXT.replace("xyz: [211 mm, 0 mm, 884 mm]", "xyz: [216 mm, 0 mm, 884 mm]", 1)
     assert text != EXAMPLE_TEXT
@@ -95,13 +95,18 @@ def test_a_check_stage_code_is_judged_by_generate_not_validate(tmp_path: Path) -
     spec = _project(tmp_path / "a", text, [pose])
     validated = cli("validate", spec)
     assert validated.returncode == 0 and "SPEC130" not in validated.stderr
+    assert "error[POSE010]" in validated.stderr and "waived: the camera mount" in validated.stderr
     generated = cli("generate", spec)
     assert generated.returncode == 0, generated.stderr
     assert "error[POSE010]" in generated.stderr and "waived: the camera mount" in generated.stderr
     assert cli("check", spec).returncode == 0
-    # the same waiver on a spec without the defect: unused, said by generate (not validate)
+    # the same waiver on a spec without the defect: unused, said by both
     clean = _project(tmp_path / "b", EXAMPLE_TEXT, [pose])
-    assert "SPEC130" not in cli("validate", clean).stderr
+    assert cli("validate", clean).stderr.count("warning[SPEC130]") == 1
     assert "warning[SPEC130]" in cli("generate", clean).stderr
-    # and without the waiver the planted pose fails generate, as before
-    assert cli("generate", _project(tmp_path / "c", text, [])).returncode == 1
+    # and without the waiver the planted pose fails validate (2, invalid) and generate (1, a check)
+    bad = _project(tmp_path / "c", text, [])
+    refused = cli("validate", bad)
+    assert refused.returncode == 2 and refused.stderr.count("error[POSE010]") == 1
+    assert "valid:" not in refused.stdout
+    assert cli("generate", bad).returncode == 1

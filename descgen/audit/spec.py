@@ -51,3 +51,17 @@ def load_spec(
 
 def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loaded:
     return read_spec_text(text, file, INPUT_RULES if rules else None)
+
+
+def validate_spec(
+    path: str | Path, display: str | None = None, package_paths: Sequence[Path] = ()
+) -> tuple[Loaded, list[Finding]]:
+    """``descgen validate``: the spec loaded (:func:`load_spec`, InputError when it cannot be
+    built or an input-stage rule fails), then the check-stage rules too (a known pose off its
+    forward kinematics, POSE010) with the spec's waivers of them, so "valid" means generate's
+    rules pass as well. Returns the loaded spec and the check-stage findings."""
+    from descgen.audit.waivers import applied
+
+    loaded = load_spec(path, display, True, package_paths)
+    later = applied(run(loaded.robot, stage="check"), loaded.robot.waivers, check_stage)
+    return loaded, later

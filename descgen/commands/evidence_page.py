@@ -223,11 +223,12 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
 
 
 def _validation(spec: Path, shown: str, package_paths: tuple[Path, ...]) -> tuple[list[str], Any]:
-    from descgen.audit.spec import load_spec
+    from descgen.audit.spec import validate_spec
 
-    loaded = load_spec(spec, display=shown, package_paths=package_paths)
-    text = report.text(loaded.findings) + cli_format.validated(shown, loaded.robot) + "\n"
-    ok = not any(f.blocks for f in loaded.findings)
+    loaded, later = validate_spec(spec, display=shown, package_paths=package_paths)
+    found = [*loaded.findings, *later]
+    ok = not any(f.blocks for f in found)
+    text = report.text(found) + (cli_format.validated(shown, loaded.robot) + "\n" if ok else "")
     lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
     lines += [_verdict(ok, "the spec is valid"), ""]
     return lines, loaded.robot
@@ -348,12 +349,12 @@ def _transcript(
     robot: Any,
     package_paths: tuple[Path, ...],
 ) -> list[str]:
-    from descgen.audit.spec import load_spec
+    from descgen.audit.spec import validate_spec
 
     # what `descgen validate SPEC` prints (cli._cmd_validate): the findings on stderr, then the
     # one-line verdict; tests/test_evidence_page.py holds it to the command's real output
-    loaded = load_spec(spec, package_paths=package_paths)
-    validated = report.text(loaded.findings) + cli_format.validated(str(spec), loaded.robot) + "\n"
+    loaded, later = validate_spec(spec, package_paths=package_paths)
+    validated = report.text([*loaded.findings, *later]) + cli_format.validated(str(spec), loaded.robot) + "\n"
     steps = [
         (f"descgen validate {shown}", validated.replace(str(spec), shown)),
         (f"descgen generate {shown}", f"{shown}: wrote 0 files, {unchanged} unchanged\n"),
