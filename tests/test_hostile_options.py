@@ -514,6 +514,13 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("audit", "--xacro-arg", ["audit", NOSPEC, "--xacro-arg", "use_gripper"], "error[READ005]: --xacro-arg"),
     ("audit", "--launch-arg", ["audit", NOSPEC, "--launch-arg", "joint_prefix"], "error[CTRL054]: --launch-arg"),
     ("audit", "--package-path", ["audit", NOSPEC, "--package-path", "{tmp}/none"], "argument --package-path: '"),
+    ("audit", "--baseline", ["audit", NOSPEC, "--baseline", ""], "argument --baseline: an empty path names nothing"),
+    (
+        "audit",
+        "--write-baseline",
+        ["audit", NOSPEC, "--write-baseline", ""],
+        "argument --write-baseline: an empty path names nothing",
+    ),
     ("audit", "--moveit-config", ["audit", NOSPEC, "--moveit-config", "{afile}"], "' is not a folder"),
     ("audit", "--trust-xacro", ["audit", NOSPEC, "--trust-xacro=no"], "argument --trust-xacro: ignored explicit"),
     ("audit", "--format", ["audit", NOSPEC, "--format", "html"], "argument --format: invalid choice: 'html'"),

@@ -223,6 +223,14 @@ def _cmd_audit(args: argparse.Namespace) -> int:
     show = wanted(args.format == "text") and len(paths) > 1
     with counting(len(paths), "audit", "file", show) as step:
         found, unusable = audit_paths(paths, options, args.jobs, step)
+    if args.baseline is not None or args.write_baseline is not None:
+        from descgen.commands import baseline
+
+        if args.baseline is not None:
+            found = baseline.apply(found, args.baseline)
+        if args.write_baseline is not None:
+            n = baseline.write(found, args.write_baseline)
+            print(f"wrote {args.write_baseline}: {n} finding(s)", file=sys.stderr)
     if args.format == "json":
         sys.stdout.write(report.as_json(found))
     elif args.format == "sarif":
@@ -583,6 +591,19 @@ def parser() -> argparse.ArgumentParser:
     )
     a.add_argument("--format", choices=("text", "json", "sarif", "junit"), default="text")
     a.add_argument("--strict", action="store_true", help="warnings count as errors")
+    a.add_argument(
+        "--baseline",
+        type=types.path,
+        metavar="FILE",
+        help="findings listed in FILE (written by --write-baseline) are reported as waived and fail nothing: "
+        "CI fails only on new findings",
+    )
+    a.add_argument(
+        "--write-baseline",
+        type=types.path,
+        metavar="FILE",
+        help="write this audit's findings to FILE as the baseline (the exit code is still this audit's)",
+    )
     a.add_argument(
         "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"
     )

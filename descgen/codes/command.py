@@ -10,6 +10,33 @@ from descgen.codes.registry import Stage
 declare = Stage("command")
 
 
+BASE001 = declare(
+    "BASE001",
+    "baseline-unreadable",
+    "error",
+    "The --baseline file cannot be read as a descgen baseline (missing, too large, not JSON, or not the "
+    "shape --write-baseline writes).",
+    """A baseline that is silently ignored would fail CI on every old finding, or worse, one read wrongly
+      could hide new ones. Write it with descgen audit ... --write-baseline FILE.""",
+)
+
+BASE002 = declare(
+    "BASE002",
+    "baseline-entry-unused",
+    "warning",
+    "An entry of the --baseline file matches no finding of this audit: the finding was fixed (or renamed).",
+    """Remove the entry (write the baseline again with --write-baseline): left in, it would accept the
+      finding silently if it came back.""",
+)
+
+BASE003 = declare(
+    "BASE003",
+    "baseline-unwritable",
+    "error",
+    "The --write-baseline file cannot be written (a missing folder, no permission, a folder in the way).",
+    """Nothing is written; the audit's findings are printed as usual. Name a writable file.""",
+)
+
 IMP008 = declare(
     "IMP008",
     "import-bad-units",
