@@ -337,7 +337,7 @@ def test_every_reader_resolves_the_corpus_meshes_alike(
     simulate's MuJoCo emitter and the sweep's collision model use the same files, whether the
     corpus is given with --package-path or as a sourced ROS_PACKAGE_PATH."""
     from descgen.commands.simulate.mujoco_urdf import emit
-    from descgen.commands.view import load, mesh_plan
+    from descgen.commands.view import mesh_plan
     from descgen.read.description import Options, load_description
 
     xacro = CORPUS / str(case["xacro"])
@@ -364,7 +364,6 @@ def test_every_reader_resolves_the_corpus_meshes_alike(
     # MuJoCo gets every collision mesh the resolver found (none left out as "not a file")
     emitted = emit(flag)
     assert not [f for f in emitted.findings if "is not a file inside" in f.message]
-    del load
 
 
 def test_an_absolute_mesh_is_read_only_inside_the_folders_named(tmp_path: Path) -> None:

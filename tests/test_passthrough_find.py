@@ -57,7 +57,7 @@ def _xacro(path: Path, packages: dict[str, Path], monkeypatch: pytest.MonkeyPatc
 def test_find_in_passthrough_is_imported_and_generated_symbolic(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    src, bringup = _workspace(tmp_path)
+    src, _ = _workspace(tmp_path)
     spec = tmp_path / "project" / "specs" / "bot.yaml"
     ran = cli("import", src / "bot_description" / "urdf" / "bot.urdf.xacro", "-o", spec, "--package-path", src)
     assert ran.returncode == 0, ran.stderr
@@ -85,7 +85,6 @@ def test_find_in_passthrough_is_imported_and_generated_symbolic(
     # every other dollar is still data: xacro evaluates nothing else of a pass-through
     assert expanded.findtext("gazebo/note") == "costs $5, home is $(env HOME)"
     assert cli("check", spec, "--package-path", src).returncode == 0
-    del bringup
 
 
 @pytest.mark.parametrize(

@@ -32,7 +32,7 @@ import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from descgen.infra.safeio import MIB, inside, read_head
+from descgen.infra.safeio import MIB, inside, read_head, within
 
 _NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
 _MANIFEST_BYTES = 1 * MIB  # the <name> of a package.xml is in its first lines; real ones are a few kB
@@ -165,11 +165,11 @@ class Owners:
             real = os.path.realpath(path)
         except (OSError, ValueError):
             return None
-        inside = [r for r in self.roots if real == r or real.startswith(r.rstrip("/") + "/")]
+        inside = [r for r in self.roots if within(real, r)]
         if not inside:
             return None
         folder = real if os.path.isdir(real) else os.path.dirname(real)
-        while any(folder == r or folder.startswith(r.rstrip("/") + "/") for r in inside):
+        while any(within(folder, r) for r in inside):
             pkg = self._package(folder)
             if pkg is not None:
                 return pkg, folder, real[len(folder) :].lstrip("/")

@@ -278,13 +278,22 @@ def own_meshes(robot: Robot) -> dict[str, Path]:
 PACKAGE_REF = re.compile(r"\$\(find ([A-Za-z0-9][A-Za-z0-9_-]*)\)|package://([A-Za-z0-9][A-Za-z0-9_-]*)/")
 
 
+def named_packages(robot: Robot) -> list[str]:
+    """Packages the robot names, in the order first named: those of its ``package://`` meshes,
+    then those its pass-through elements name (a Gazebo plugin's ``$(find pkg)/config/...``)."""
+    found: dict[str, None] = {}
+    for name in _mesh_names(robot):
+        if (uri := split_package_uri(name)) and PACKAGE_NAME.fullmatch(uri[0]):
+            found.setdefault(uri[0])
+    for xml in robot.passthrough:
+        for ref in PACKAGE_REF.finditer(xml):
+            found.setdefault(ref.group(1) or ref.group(2))
+    return list(found)
+
+
 def other_packages(robot: Robot) -> list[str]:
-    """Packages the outputs reference, each an exec_depend: those of the robot's meshes and
-    those its pass-through elements name (a Gazebo plugin's ``$(find pkg)/config/...``)."""
-    own = package_name(robot)
-    found = {uri[0] for name in _mesh_names(robot) if (uri := split_package_uri(name))}
-    found |= {m.group(1) or m.group(2) for xml in robot.passthrough for m in PACKAGE_REF.finditer(xml)}
-    return sorted(p for p in found - {own} if PACKAGE_NAME.fullmatch(p))
+    """Packages the outputs reference, each an exec_depend (:func:`named_packages` but the own)."""
+    return sorted(set(named_packages(robot)) - {package_name(robot)})
 
 
 def _mesh_refs(spec: Any) -> Iterator[tuple[tuple[str | int, ...], str]]:

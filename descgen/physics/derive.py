@@ -42,20 +42,19 @@ def diff_drive_geometry(robot: Robot, c: Controller) -> DiffDriveGeometry:
         missing = [n for n, j in zip((left[0], right[0]), joints, strict=True) if j is None]
         return DiffDriveGeometry(None, None, (f"wheel joint '{missing[0]}' does not exist",))
     separation = None
+    # both wheel joints in the root's frame, every joint at zero: a wheel may hang from its own
+    # link (a wheel-drop suspension, iRobot Create 3), the controller sees only the two wheels'
+    # contact line; from one parent link this is the distance in that link's frame
+    fl, fr = _frame_in_root(robot, lj), _frame_in_root(robot, rj)
     if lj.axis is None:
         problems.append(f"wheel joint '{lj.name}' has no axis")
-    elif _frame_in_root(robot, lj) is None or _frame_in_root(robot, rj) is None:
+    elif fl is None or fr is None:
         problems.append(f"wheels '{lj.name}' and '{rj.name}' are not in one tree with the robot's root")
     else:
         # plain floats (descgen/physics/rigid.py): validate and check run this for every diff drive,
         # and numpy costs more to import than the whole computation
         from descgen.physics import rigid
 
-        # both wheel joints in the root's frame, every joint at zero: a wheel may hang from its
-        # own link (a wheel-drop suspension, iRobot Create 3), the controller sees only the two
-        # wheels' contact line; from one parent link this is the distance in that link's frame
-        fl, fr = _frame_in_root(robot, lj), _frame_in_root(robot, rj)
-        assert fl is not None and fr is not None
         axis = rigid.rotate(fl[0], lj.axis)
         n = rigid.norm(axis)
         if n > 0:

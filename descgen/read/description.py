@@ -162,11 +162,9 @@ def audit(path: Path, options: Options = Options()) -> list[Finding]:
     found += run(robot)
     if robot.waivers:  # a spec's: its rules' findings waived as validate and generate waive them
         from descgen.audit.registry import RULES
-        from descgen.audit.waivers import unused, waive
+        from descgen.audit.waivers import applied
 
-        ruled = tuple(w for w in robot.waivers if w.code in RULES)
-        found = waive(found, ruled)
-        found += unused(ruled, found, lambda code: True)
+        found = applied(found, tuple(w for w in robot.waivers if w.code in RULES), lambda code: True)
     if kept is not None:
         findings_cache.put(kept, robot, found)
     return found

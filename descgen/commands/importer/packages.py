@@ -29,24 +29,9 @@ from descgen.codes.importer import IMP014, IMP036
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
 from descgen.meshes.packages import Owners, environment
-from descgen.meshes.paths import PACKAGE_NAME, PACKAGE_REF, package_root, split_package_uri
+from descgen.meshes.paths import named_packages, package_root
 from descgen.read.xacro_file import find_package
 from descgen.spec.models import rep144_problem, suggest_package_name
-
-
-def _packages(robot: m.Robot) -> list[str]:
-    """Packages named by ``package://`` meshes, then by pass-through elements (``$(find pkg)``,
-    ``package://pkg/``), in the order they are first named."""
-    found: dict[str, None] = {}
-    for lk in robot.links:
-        for shape in lk.shapes():
-            g = shape.geometry
-            if isinstance(g, m.Mesh) and (uri := split_package_uri(g.filename)) and PACKAGE_NAME.fullmatch(uri[0]):
-                found.setdefault(uri[0])
-    for xml in robot.passthrough:
-        for ref in PACKAGE_REF.finditer(xml):
-            found.setdefault(ref.group(1) or ref.group(2))
-    return list(found)
 
 
 def package_paths(
@@ -62,7 +47,7 @@ def package_paths(
     sourced = set(environment(os.environ))
     spec_dir = spec.resolve().parent
     folders: list[str] = []
-    for pkg in _packages(robot):
+    for pkg in named_packages(robot):
         folder = next((f for f in search if find_package(pkg, [f]) is not None), None)
         if folder is None or folder in sourced:
             continue  # not found at all (the audit reports its meshes: GEOM), or found as ROS finds it
@@ -144,7 +129,7 @@ def package_meshes(robot: m.Robot, search: Sequence[Path], shown: str) -> tuple[
 def package_name(robot: m.Robot, where: Where) -> tuple[str | None, list[Finding]]:
     """(``package.name`` to write, or None when ``<robot>_description`` is right; IMP014 saying why)."""
     derived = f"{robot.name}_description"
-    taken = set(_packages(robot))
+    taken = set(named_packages(robot))
     name = derived if rep144_problem(derived) is None else suggest_package_name(derived)
     while name in taken:
         name = f"{name.removesuffix('_description')}_descgen_description"
