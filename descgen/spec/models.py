@@ -200,17 +200,30 @@ class Origin(Base):
     """Pose of a child frame in its parent: xyz, then roll-pitch-yaw about the fixed axes."""
 
     xyz: tuple[Length, Length, Length] = (ZERO, ZERO, ZERO)
+    """Position of the child frame in the parent frame: three lengths x, y, z (e.g. `[0, 0, 75 mm]`; a bare `0` needs
+    no unit). Default `[0, 0, 0]`; each a plausible offset (UNIT004, `plausibility.offset`)."""
     rpy: tuple[Angle, Angle, Angle] = (ZERO_ANGLE, ZERO_ANGLE, ZERO_ANGLE)
+    """Rotation of the child frame: roll, pitch, yaw angles about the parent's fixed x, y, z axes, applied in that
+    order (e.g. `[90 deg, 0, 0]`). Default `[0, 0, 0]`; each a plausible angle (UNIT004)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class BoxSpec(Base):
     size: tuple[Size, Size, Size]
+    """Side lengths along the shape's x, y, z, three lengths (e.g. `[600 mm, 450 mm, 200 mm]`); the box is centred on
+    its origin. Each a plausible size (UNIT004, `plausibility.size`; UNIT012)."""
 
 
 class _Round(Base):
     radius: Size | None = None
+    """Radius, a length (e.g. `30 mm`); give exactly one of `radius` and `diameter` (SPEC004). A plausible size
+    (UNIT004, `plausibility.size`)."""
     diameter: Size | None = None
+    """Diameter, a length (e.g. `60 mm`), instead of `radius` (exactly one of them, SPEC004); the URDF gets half of it.
+    A plausible size (UNIT004)."""
 
     @model_validator(mode="after")
     def _one_size(self) -> Self:
@@ -228,6 +241,8 @@ class _Round(Base):
 
 class CylinderSpec(_Round):
     length: Size
+    """Length along the cylinder's own z axis, a length (e.g. `100 mm`); the cylinder is centred on its origin. A
+    plausible size (UNIT004; UNIT012)."""
 
 
 class SphereSpec(_Round):
@@ -240,16 +255,30 @@ class MeshSpec(Base):
     (default 1 mm), so a mesh exported in millimetres or inches is caught (GEOM030)."""
 
     filename: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]
+    """The mesh file: `package://<package>/<path>` (found through `package_paths`, `--package-path` or the sourced
+    workspace) or a path relative to the spec, which generate copies into the package. A file that cannot be found
+    or used is SPEC060-SPEC063; STL, OBJ and COLLADA files are measured."""
     scale: tuple[Number, Number, Number] = (1.0, 1.0, 1.0)
+    """Scale factors along the mesh's x, y, z, plain numbers; default `[1, 1, 1]` (`[0.001, 0.001, 0.001]` for a file
+    in millimetres). A factor other than 1 or 0.001 is flagged (UNIT013)."""
     size: tuple[Size, Size, Size] | None = None
+    """The part's measured size: the scaled mesh's bounding-box extents along the mesh's x, y, z, three lengths (e.g.
+    `[100 mm, 200 mm, 300 mm]`). When given, the file is checked against it within `tolerance` (GEOM030), which
+    catches a mesh exported in millimetres or inches."""
     tolerance: Tolerance | None = None
+    """How far each extent of the scaled mesh may differ from `size`, a length; default `1 mm` (GEOM030)."""
 
 
 class GeometrySpec(Base):
     box: BoxSpec | None = None
+    """A box (`size`). A geometry is exactly one of box, cylinder, sphere and mesh (SPEC004)."""
     cylinder: CylinderSpec | None = None
+    """A cylinder along its own z axis (`radius` or `diameter`, and `length`); exactly one shape per geometry
+    (SPEC004)."""
     sphere: SphereSpec | None = None
+    """A sphere (`radius` or `diameter`); exactly one shape per geometry (SPEC004)."""
     mesh: MeshSpec | None = None
+    """A mesh file (`filename`, optional `scale` and measured `size`); exactly one shape per geometry (SPEC004)."""
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Self:
@@ -265,8 +294,13 @@ class GeometrySpec(Base):
 
 class MaterialSpec(Base):
     name: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)]
+    """The material's name, which visuals name in `material:`; each name once in `materials` (SPEC026)."""
     rgba: tuple[Number, Number, Number, Number] | None = None
+    """Colour as red, green, blue, alpha: plain numbers from 0 to 1 (divide 0-255 values by 255; SPEC003). A material
+    needs `rgba` or `texture` (SPEC004)."""
     texture: Annotated[OneLine, StringConstraints(max_length=1000)] | None = None
+    """An image file name, written as the URDF's `<texture filename>`. A material needs `rgba` or `texture`
+    (SPEC004)."""
 
     @model_validator(mode="after")
     def _colour(self) -> Self:
@@ -283,26 +317,50 @@ class MaterialSpec(Base):
 
 class VisualSpec(Base):
     name: Annotated[OneLine, StringConstraints(max_length=200)] | None = None
+    """Optional name of the visual (the URDF's `<visual name>`)."""
     origin: Origin = Origin()
+    """Pose of the shape in the link frame (`xyz`, `rpy`); default the link frame itself."""
     geometry: GeometrySpec
+    """The shape: exactly one of box, cylinder, sphere, mesh (SPEC004)."""
     material: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)] | None = None
+    """The name of a material declared under the robot's `materials:` (written as `<material name>`)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class CollisionSpec(Base):
     name: Annotated[OneLine, StringConstraints(max_length=200)] | None = None
+    """Optional name of the collision shape (the URDF's `<collision name>`)."""
     origin: Origin = Origin()
+    """Pose of the shape in the link frame (`xyz`, `rpy`); default the link frame itself."""
     geometry: GeometrySpec
+    """The shape collisions are checked with (often simpler than the visual): exactly one of box, cylinder, sphere,
+    mesh (SPEC004). Its volume is compared with the visual's (GEOM002)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class InertiaSpec(Base):
     ixx: InertiaQ
+    """Moment of inertia about the x axis through the centre of mass (in the inertial origin's axes), an inertia (e.g.
+    `0.01 kg*m^2`). The tensor must be positive definite (INER003), meet the triangle inequality (INER004) and suit
+    the mass and size (INER006, INER011)."""
     iyy: InertiaQ
+    """Moment of inertia about the y axis through the centre of mass, an inertia (e.g. `0.01 kg*m^2`); checked with the
+    tensor (INER003, INER004, INER006, INER011)."""
     izz: InertiaQ
+    """Moment of inertia about the z axis through the centre of mass, an inertia (e.g. `0.01 kg*m^2`); checked with the
+    tensor (INER003, INER004, INER006, INER011)."""
     ixy: InertiaQ = ZERO
+    """Product of inertia xy about the centre of mass, an inertia (e.g. `0.001 kg*m^2`); default 0."""
     ixz: InertiaQ = ZERO
+    """Product of inertia xz about the centre of mass, an inertia (e.g. `0.001 kg*m^2`); default 0."""
     iyz: InertiaQ = ZERO
+    """Product of inertia yz about the centre of mass, an inertia (e.g. `0.001 kg*m^2`); default 0."""
 
 
 class InertialSpec(Base):
@@ -316,10 +374,22 @@ class InertialSpec(Base):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
     mass: Mass
+    """The link's mass (e.g. `1200 g`, `28 kg`), a plausible mass (UNIT004, `plausibility.mass`). Zero on a moving link
+    is INER001; mass over collision volume must be a plausible density (UNIT010)."""
     origin: Origin | None = None
+    """The centre of mass in the link frame (`xyz`) and, with `inertia`, the orientation of the tensor's axes (`rpy`).
+    With `from` only `xyz` is used, default the shape's centre. Far outside the collision shapes: INER005."""
     inertia: InertiaSpec | None = None
+    """The inertia tensor about the centre of mass (`ixx`, `iyy`, `izz`; products default 0), in `kg*m^2`. Give exactly
+    one of `inertia` and `from` (SPEC004)."""
     from_: Literal["collision", "visual"] | None = Field(default=None, alias="from")
+    """`collision` or `visual`: the tensor of the link's first collision (or visual) shape at uniform density, about
+    its centroid, in link axes. Exactly one of `inertia` and `from` (SPEC004); no such shape is INER010, a mesh must
+    be watertight (INER030)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
     @model_validator(mode="after")
     def _tensor(self) -> Self:
@@ -334,46 +404,87 @@ class InertialSpec(Base):
 
 class LinkBody(Base):
     visual: Annotated[list[VisualSpec], BeforeValidator(_one_or_many)] = []
+    """What the link looks like: one visual or a list, each a shape with its origin and material."""
     collision: Annotated[list[CollisionSpec], BeforeValidator(_one_or_many)] = []
+    """The link's collision shapes, one or a list. A moving link with visuals but no collision shape is GEOM001."""
     inertial: InertialSpec | None = None
+    """Mass, centre of mass and inertia tensor. A link with geometry that a moving joint carries needs one, on itself
+    or on a link welded to it (INER002)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
     description: Text | None = None
+    """A note about the link, written as a comment above it in the URDF and Xacro (with its sources)."""
 
 
 class LinkSpec(LinkBody):
     name: ElementName
+    """The link's name, its tf frame id: unique (NAME001), without spaces, `$` or a leading `/` (SPEC050)."""
 
 
 class LimitSpec(Base):
     """Units follow the joint type: angles or lengths, N*m or N, rad/s or m/s."""
 
     lower: Raw | None = None
+    """Lowest position: an angle for a revolute joint (e.g. `-170 deg`), a length for a prismatic one (e.g. `0 mm`).
+    Revolute and prismatic joints need `lower` and `upper` (JOINT003), `lower` <= `upper` (JOINT004); a continuous
+    joint takes neither (JOINT006)."""
     upper: Raw | None = None
+    """Highest position: an angle for a revolute joint (e.g. `170 deg`), a length for a prismatic one (e.g. `300 mm`);
+    needed with `lower` (JOINT003), not below it (JOINT004)."""
     effort: Raw
+    """Largest effort: a torque for revolute and continuous joints (e.g. `40 N*m`), a force for prismatic ones (e.g.
+    `500 N`). Positive (JOINT005) and enough to hold the joint against gravity (JOINT008)."""
     velocity: Raw
-    # rad/s^2 (deg/s^2) or m/s^2; not in the URDF (it has no such attribute), written to MoveIt's
-    # joint_limits.yaml; required for the joints of planning groups when ``moveit:`` is set (SPEC110)
+    """Largest speed: an angular velocity for revolute and continuous joints (e.g. `90 deg/s`, `30 rpm`), a linear one
+    for prismatic joints (e.g. `0.1 m/s`). Positive (JOINT005); MoveIt needs it (SPEC111)."""
     acceleration: Raw | None = None
+    """Largest acceleration, for MoveIt's joint_limits.yaml (the URDF has no such attribute): e.g. `360 deg/s^2`, or
+    `0.2 m/s^2` for a prismatic joint. Required on planning-group joints with `moveit:` (SPEC110), positive
+    (SPEC116)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class DynamicsSpec(Base):
     damping: Raw | None = None
+    """Viscous damping (the URDF's `<dynamics damping>`): `N*m*s/rad` for revolute and continuous joints (e.g.
+    `0.5 N*m*s/rad`), `N*s/m` for prismatic ones. Default 0."""
     friction: Raw | None = None
+    """Static friction (the URDF's `<dynamics friction>`): a torque for revolute and continuous joints (e.g.
+    `0.2 N*m`), a force for prismatic ones (e.g. `5 N`). Default 0."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class MimicSpec(Base):
     joint: ElementName
+    """The leader joint this joint follows, `q = multiplier * q_leader + offset`: an existing joint, not this one and
+    not itself a mimic (JOINT007)."""
     multiplier: Number = 1.0
+    """Factor on the leader's position, a plain number; default 1."""
     offset: Raw | None = None
+    """Added to `multiplier * q_leader`, in this joint's unit (an angle, or a length for a prismatic joint, e.g.
+    `10 deg`); default 0."""
 
 
 class SafetySpec(Base):
     soft_lower_limit: Raw | None = None
+    """Lower position where the safety controller starts limiting, in the joint's unit (an angle, or a length for a
+    prismatic joint); default 0. Written to the URDF's `<safety_controller>`."""
     soft_upper_limit: Raw | None = None
+    """Upper position where the safety controller starts limiting, in the joint's unit (an angle, or a length for a
+    prismatic joint); default 0."""
     k_position: Raw | None = None
+    """Position gain of the safety controller, in `1/s` (e.g. `100 1/s`); default 0."""
     k_velocity: Raw
+    """Velocity gain of the safety controller (required): `N*m*s/rad` for revolute joints (e.g. `10 N*m*s/rad`),
+    `N*s/m` for prismatic ones."""
 
 
 JointType = Literal["fixed", "revolute", "continuous", "prismatic", "floating", "planar"]
@@ -381,27 +492,52 @@ JointType = Literal["fixed", "revolute", "continuous", "prismatic", "floating", 
 
 class JointBody(Base):
     type: JointType
+    """`fixed`, `revolute` (rotation within limits), `continuous` (unlimited rotation), `prismatic` (sliding),
+    `floating` or `planar`; robot_state_publisher does not move the last two in tf (FRAME003)."""
     parent: ElementName
+    """Name of the parent link (TOPO004 when it does not exist)."""
     axis: Axis | None = None
+    """Axis of rotation or translation in the joint frame: `+x`, `-x`, `+y`, `-y`, `+z`, `-z` or three plain numbers
+    (e.g. `[0, 1, 0]`), non-zero and of length 1 (JOINT001, JOINT002). Default `+x` (URDF's); ignored on fixed and
+    floating joints."""
     limit: LimitSpec | None = None
+    """Position, effort and velocity limits (and MoveIt's acceleration), in the units of the joint type. Revolute and
+    prismatic joints need one (JOINT003)."""
     dynamics: DynamicsSpec | None = None
+    """Damping and friction for simulators (the URDF's `<dynamics>`)."""
     mimic: MimicSpec | None = None
+    """Makes this joint follow another: `q = multiplier * q_leader + offset` (JOINT007; known poses: POSE020)."""
     safety_controller: SafetySpec | None = None
+    """Soft limits and gains of the URDF's `<safety_controller>`."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
     description: Text | None = None
+    """A note about the joint, written as a comment above it in the URDF and Xacro (with its sources)."""
 
 
 class JointSpec(JointBody):
     name: ElementName
+    """The joint's name: unique (NAME002); a moving joint's name is best a plain identifier (NAME003)."""
     child: ElementName
+    """Name of the child link, which the joint moves; a link has one parent joint (TOPO002)."""
     origin: Origin = Origin()
+    """Pose of the joint frame, which is the child link's frame, in the parent link's frame at joint position zero. An
+    offset far beyond the robot's size is UNIT011."""
 
 
 class PartInstance(Base):
     link: ElementName
+    """Name of this copy's link (e.g. `left_wheel_link`)."""
     joint: ElementName
+    """Name of this copy's joint (e.g. `left_wheel_joint`)."""
     origin: Origin = Origin()
+    """Pose of this copy's joint in the parent link of the part's joint (e.g. `{xyz: [0, 225 mm, 0]}`)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 # The Xacro writes a part as <xacro:macro name="PART">, called as <xacro:PART .../>: a part
@@ -426,11 +562,20 @@ class PartSpec(Base):
     with per-instance names and origin. The Xacro output makes it one macro."""
 
     name: Annotated[Name, AfterValidator(_not_xacro_tag)]
+    """The part's name, an identifier (the Xacro macro's name); not a xacro tag such as `macro` (SPEC022)."""
     link: LinkBody = LinkBody()
+    """The link body every copy gets: visuals, collisions, inertial. Default: a link without geometry."""
     joint: JointBody
+    """The joint body every copy gets: type, parent, axis, limits; each instance gives the names and the origin."""
     instances: Annotated[list[PartInstance], Field(min_length=1)]
+    """The copies, each with its own link and joint names and origin; at least one."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
     description: Text | None = None
+    """A note about the part for readers of the spec (the outputs carry the link's and the joint's own
+    `description`)."""
 
 
 class SensorSpec(Base):
@@ -438,12 +583,22 @@ class SensorSpec(Base):
     ``<name>_optical_frame`` (z forward, x right, y down; REP 103)."""
 
     name: ElementName
+    """The sensor's name: its frame is `<name>_link`, on the fixed joint `<name>_joint`."""
     type: Literal["camera", "lidar", "imu", "generic"]
+    """`camera`, `lidar`, `imu` or `generic`. A camera also gets `<name>_optical_frame`, turned by the REP 103 rotation
+    (z forward, x right, y down)."""
     parent: ElementName
+    """Name of the link the sensor is mounted on."""
     origin: Origin = Origin()
+    """Pose of the sensor frame (e.g. its optical centre) in the parent link; default the parent's frame."""
     link: LinkBody = LinkBody()
+    """Body of the sensor link: its housing's visuals, collisions and inertial. Default: a frame without geometry."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
     description: Text | None = None
+    """A note about the sensor, written as a comment above its joint in the URDF and Xacro."""
 
 
 class InterfaceLimitSpec(Base):
@@ -467,9 +622,16 @@ class JointCommandSpec(Base):
     ros2_control reads them only on command interfaces (hardware_interface component_parser.cpp)."""
 
     name: ParamInterfaceName
+    """`position`, `velocity` or `effort`: the command interface these limits are for."""
     data_type: DataType | None = None
+    """The interface's ros2_control `data_type`: `double` (ros2_control's default, when left out), `bool`, `float32`,
+    or an integer type (`uint8` ... `int32`)."""
     min: Raw | None = None
+    """Lowest command, in the units of the joint and interface (e.g. `-90 deg/s`, `-20 N`). Default: from the joint's
+    limits (`lower`, or minus the velocity or effort limit); never wider than them (CTRL008)."""
     max: Raw | None = None
+    """Highest command, in the units of the joint and interface (e.g. `90 deg/s`, `20 N`). Default: from the joint's
+    limits (`upper`, or the velocity or effort limit); never wider than them (CTRL008)."""
 
 
 class JointStateSpec(Base):
@@ -477,8 +639,14 @@ class JointStateSpec(Base):
     joint's ``initial_position`` instead, not both)."""
 
     name: ParamInterfaceName
+    """`position`, `velocity` or `effort`: the state interface."""
     data_type: DataType | None = None
+    """The interface's ros2_control `data_type`: `double` (ros2_control's default, when left out), `bool`, `float32`,
+    or an integer type (`uint8` ... `int32`)."""
     initial_value: Raw | None = None
+    """The value the state starts at, in the units of the joint and interface (e.g. `150 mm`). Default 0 (a position
+    outside its limits at 0: the middle of them); for `position`, not together with the joint's `initial_position`
+    (CTRL080)."""
 
 
 Plugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_/:]+$")]
@@ -499,15 +667,29 @@ class ControlJointSpec(Base):
     joint itself, kept as written (e.g. a driver's per-joint id)."""
 
     name: ElementName
+    """Name of a moving URDF joint (CTRL001), listed once (CTRL005) and in one block only (SPEC085)."""
     command: list[JointInterfaceName | JointCommandSpec | InterfaceName] = []
+    """Command interfaces: `position`, `velocity`, `acceleration`, `effort`, `{name, min, max}`, or any name the
+    hardware exports (a leg's `kp`). Controllers can claim only these (CTRL002); a mimic joint has none (CTRL040)."""
     state: list[JointInterfaceName | JointStateSpec | InterfaceName] = []
+    """State interfaces, e.g. `[position, velocity]`: names or `{name, initial_value}`. A moving joint's /joint_states
+    come from its position state (FRAME002)."""
     initial_position: Raw | None = None
+    """Start value of the position state, in the joint's unit (e.g. `150 mm`, `-90 deg`). Default 0, or the middle of
+    the limits when 0 is outside them; not together with the position state's `initial_value` (CTRL080)."""
     on_limit: Literal["reject", "clip"] = "reject"
-    # Jazzy's ros2_control <joint mimic="...">: unset, a URDF <mimic> joint is a mimic joint
-    # (state from its leader, no command interface); false: an ordinary joint
+    """What `descgen control` does with a command beyond the joint's limits: `reject` it (default; CTRL012) or `clip`
+    it to the limit."""
     mimic: bool | None = None
+    """Jazzy's `<joint mimic>`: unset, a URDF `<mimic>` joint is a mimic joint (state from its leader, no command
+    interface); `false` makes it an ordinary joint; `true` needs a URDF `<mimic>` (CTRL041)."""
     params: HwParams = {}
+    """The joint's own `<param>`s (e.g. a driver's per-joint id), written as given; pre-Jazzy `initial_<interface>`
+    params are flagged (CTRL046)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 MOCK_PLUGIN = "mock_components/GenericSystem"
@@ -517,8 +699,11 @@ GZ_PLUGIN = "gz_ros2_control/GazeboSimSystem"
 class HardwareVariantSpec(Base):
     """The ``<hardware>`` of one value of the Xacro argument ``hardware`` (gazebo or real)."""
 
-    plugin: Plugin | None = None  # gazebo: gz_ros2_control/GazeboSimSystem when left out
+    plugin: Plugin | None = None
+    """The variant's hardware plugin: for `gazebo`, `gz_ros2_control/GazeboSimSystem` (the default and the only one
+    Jazzy has, SPEC081); for `real`, the vendor's driver plugin, required (SPEC082)."""
     params: HwParams = {}
+    """The variant's hardware `<param>`s (e.g. `device: /dev/ttyACM0`), written as given."""
 
 
 class HardwareSpec(Base):
@@ -526,8 +711,14 @@ class HardwareSpec(Base):
     variant and the generated Xacro takes ``hardware:=mock|gazebo|real`` (default mock)."""
 
     plugin: Plugin = MOCK_PLUGIN
+    """The hardware plugin, `package/Class`; default `mock_components/GenericSystem`, which `variants` require as the
+    mock variant (SPEC080). Jazzy has no `fake_components` (CTRL045)."""
     params: HwParams = {}
+    """Hardware `<param>`s (e.g. `device: /dev/ttyACM0`), written as given; GenericSystem params renamed before Jazzy
+    are flagged (CTRL046)."""
     variants: dict[Literal["gazebo", "real"], HardwareVariantSpec] = {}
+    """Other hardware under `gazebo` and `real`: the generated Xacro then takes `hardware:=mock|gazebo|real` (default
+    mock)."""
 
     @model_validator(mode="after")
     def _variants_known(self) -> Self:
@@ -564,8 +755,13 @@ class CalibratedSpec(Base):
     against the URDF-derived value within ``tolerance`` (default 5 mm; CTRL006/CTRL051)."""
 
     value: Size
+    """The value measured on the robot (odometry calibration), a length (e.g. `412 mm`); written to the controllers
+    file instead of the URDF-derived value."""
     source: Source
+    """Where the measurement comes from (required), e.g. `C07`."""
     tolerance: Tolerance | None = None
+    """How far `value` may be from the URDF-derived value, a length; default `5 mm`. Beyond it: CTRL051 (warning); a
+    unit slip is CTRL006."""
 
 
 CALIBRATABLE = {"diff_drive_controller/DiffDriveController": ("wheel_separation", "wheel_radius")}
@@ -573,10 +769,20 @@ CALIBRATABLE = {"diff_drive_controller/DiffDriveController": ("wheel_separation"
 
 class ControllerSpec(Base):
     name: Name
+    """The controller's name (its ROS node and its key in ros2_controllers.yaml), an identifier."""
     type: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+$")]
+    """The controller plugin, `package/Class` (e.g. `joint_trajectory_controller/JointTrajectoryController`); the
+    interfaces an unknown type claims are not checked (CTRL049)."""
     params: dict[str, ParamValue] = {}
+    """The controller's `ros__parameters`, checked against Jazzy's definition of its type (CTRL060-CTRL065; joint
+    names: CTRL009). Text with a number and a unit (`500 ms`, `90 deg/s`) is written in SI."""
     calibrated: dict[str, CalibratedSpec] = {}
+    """A diff_drive_controller's `wheel_separation` or `wheel_radius` measured on the robot (CTRL048), compared with
+    the URDF's (CTRL006, CTRL051). Left out: the URDF-derived value is written."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
     @model_validator(mode="after")
     def _calibrated_known(self) -> Self:
@@ -602,10 +808,16 @@ class InterfaceSpec(Base):
     min, max: plain numbers, as ros2_control parses them)."""
 
     name: InterfaceName
+    """The interface's name (e.g. `orientation.x`)."""
     data_type: DataType | None = None
+    """The interface's ros2_control `data_type`: `double` (ros2_control's default, when left out), `bool`, `float32`,
+    or an integer type (`uint8` ... `int32`)."""
     initial_value: Number | None = None
+    """The value the interface starts at, a plain number (as ros2_control parses it)."""
     min: Number | None = None
+    """The interface's `min` param, a plain number."""
     max: Number | None = None
+    """The interface's `max` param, a plain number."""
 
 
 Iface = InterfaceName | InterfaceSpec
@@ -617,6 +829,7 @@ GpioInterfaceName = Annotated[str, StringConstraints(pattern=GPIO_INTERFACE_PATT
 
 class GpioInterfaceSpec(InterfaceSpec):
     name: GpioInterfaceName
+    """The interface's name as the driver exports it; spaces, dots and brackets allowed (e.g. `Goal Position`)."""
 
 
 GpioIface = GpioInterfaceName | GpioInterfaceSpec
@@ -627,19 +840,38 @@ class ControlSensorSpec(Base):
     interfaces the IMU / force-torque broadcasters read when it is left empty."""
 
     name: Name
+    """The sensor component's name (its interfaces are `<name>/<interface>`); unique among the block's joints, sensors
+    and gpios (SPEC084)."""
     kind: Literal["imu", "force_torque", "generic"] = "generic"
-    frame: ElementName | None = None  # the link it measures in; written as its frame_id param
+    """`imu`, `force_torque` or `generic` (default). With `state` empty, `imu` and `force_torque` get the interfaces
+    the IMU or force-torque broadcaster reads."""
+    frame: ElementName | None = None
+    """The link the sensor measures in (SPEC083), written as its `frame_id` param unless `params` gives one."""
     state: list[Iface] = []
+    """State interfaces: names or `{name, data_type, initial_value, min, max}`, each once (SPEC084)."""
     params: HwParams = {}
+    """The sensor's `<param>`s, written as given."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class GpioSpec(Base):
     name: GpioName
+    """The gpio component's name (a leading digit is allowed, e.g. `0`); unique among the block's joints, sensors and
+    gpios (SPEC084)."""
     command: list[GpioIface] = []
+    """Command interfaces: the driver's names (e.g. `Goal Position`) or `{name, data_type, initial_value, min, max}`,
+    each once (SPEC084)."""
     state: list[GpioIface] = []
-    params: HwParams = {}  # <param>s of the gpio (e.g. an index), kept as written
+    """State interfaces: the driver's names or `{name, data_type, initial_value, min, max}`, each once (SPEC084)."""
+    params: HwParams = {}
+    """The gpio's `<param>`s (e.g. an index), written as given."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class Ros2ControlBlockSpec(Base):
@@ -647,13 +879,25 @@ class Ros2ControlBlockSpec(Base):
     its joints, sensors and gpios belong to no other block."""
 
     name: Name
+    """The hardware component's name (`<ros2_control name>`), unique across blocks (SPEC086)."""
     type: Literal["system", "actuator", "sensor"] = "system"
-    is_async: bool | None = None  # <ros2_control is_async="...">: its own thread (Jazzy's parser)
+    """`system` (default), `actuator` or `sensor`. A sensor has no command interfaces (SPEC087); the mock and Gazebo
+    plugins need `system` (SPEC088)."""
+    is_async: bool | None = None
+    """`<ros2_control is_async>`: true runs the component in its own thread. Unset: not written (Jazzy's default,
+    false)."""
     hardware: HardwareSpec = HardwareSpec()
+    """The block's hardware plugin and params, with the same `variants` as the first block (SPEC089)."""
     joints: list[ControlJointSpec] = []
+    """The joints this component drives, each in no other block (SPEC085)."""
     sensors: list[ControlSensorSpec] = []
+    """The component's sensors (`<sensor>`)."""
     gpios: list[GpioSpec] = []
+    """The component's gpios (`<gpio>`), e.g. a gripper's digital outputs."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class Ros2ControlSpec(Base):
@@ -661,39 +905,67 @@ class Ros2ControlSpec(Base):
     ``blocks`` lists further hardware components (written after the first)."""
 
     name: Name
+    """The first hardware component's name (`<ros2_control name>`, e.g. `WarehouseArmSystem`), unique across blocks
+    (SPEC086)."""
     type: Literal["system", "actuator", "sensor"] = "system"
-    is_async: bool | None = None  # <ros2_control is_async="...">: its own thread (Jazzy's parser)
+    """`system` (default), `actuator` or `sensor`. A sensor has no command interfaces (SPEC087); the mock and Gazebo
+    plugins need `system` (SPEC088)."""
+    is_async: bool | None = None
+    """`<ros2_control is_async>`: true runs the component in its own thread. Unset: not written (Jazzy's default,
+    false)."""
     hardware: HardwareSpec = HardwareSpec()
+    """The hardware plugin and params; default the mock `mock_components/GenericSystem`."""
     update_rate: Frequency
+    """The controller_manager's loop rate, a frequency (e.g. `100 Hz`), a whole number of Hz (CTRL007)."""
     joints: list[ControlJointSpec] = []
+    """The joints this component drives, each in no other block (SPEC085)."""
     sensors: list[ControlSensorSpec] = []
+    """The component's sensors (`<sensor>`), e.g. an IMU."""
     gpios: list[GpioSpec] = []
+    """The component's gpios (`<gpio>`), e.g. a gripper's digital outputs."""
     blocks: list[Ros2ControlBlockSpec] = []
+    """Further `<ros2_control>` blocks (hardware components, e.g. a gripper on its own bus), written after the first."""
     controllers: list[ControllerSpec] = []
+    """The controllers written to ros2_controllers.yaml; with any, one should be a joint_state_broadcaster (CTRL003)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class ChainSpec(Base):
     base: ElementName
+    """The chain's first link; an ancestor of `tip` (SRDF001)."""
     tip: ElementName
+    """The chain's last link (e.g. the tool flange)."""
 
 
 class GroupSpec(Base):
     name: Name
+    """The planning group's name (e.g. `arm`), declared once (SPEC024)."""
     chain: ChainSpec | None = None
-    # more chains of the same group (an SRDF group may hold several; descgen import writes them)
+    """A chain from `base` to `tip`: the group holds the joints between them (SRDF001)."""
     chains: list[ChainSpec] = []
+    """More chains of the same group (an SRDF group may hold several; import writes them)."""
     links: list[ElementName] = []
+    """Links of the group, by name (SRDF001)."""
     joints: list[ElementName] = []
+    """Joints of the group, by name (SRDF001); a passive joint in a group is SRDF020."""
     subgroups: list[Name] = []
+    """Other groups this one includes, by name (SRDF001)."""
 
 
 class GroupStateSpec(Base):
-    # MoveIt takes any string ('hold-up' in xarm7.srdf); a known pose it names stays an identifier
     name: ElementName
+    """The state's name (e.g. `ready`, or `hold-up` as MoveIt allows), once per group (SPEC024)."""
     group: Name
-    pose: Name | None = None  # take the joint values of a known pose
-    joints: dict[ElementName, JointRaw] = {}  # a list for a planar/floating joint
+    """The planning group the state is of (SRDF002)."""
+    pose: Name | None = None
+    """A known pose to take the joint values from (SRDF010); the state then lists every moving joint of the group,
+    those the pose leaves out at zero."""
+    joints: dict[ElementName, JointRaw] = {}
+    """Joint values, each in its joint's unit (e.g. `{elbow_joint: -90 deg}`), over those of `pose`; a planar or
+    floating joint takes a list in MoveIt's variable order (SPEC125). Within limits (SRDF002)."""
 
     @model_validator(mode="after")
     def _values(self) -> Self:
@@ -708,88 +980,154 @@ class GroupStateSpec(Base):
 
 class EndEffectorSpec(Base):
     name: Name
+    """The end effector's name (e.g. `gripper`)."""
     group: Name
+    """The group of the end effector's own links (e.g. the gripper's); SRDF003."""
     parent_link: ElementName
+    """The link the end effector is attached to (e.g. `tool_link`); SRDF003."""
     parent_group: Name | None = None
+    """Optional: the planning group that holds `parent_link` (e.g. `arm`)."""
 
 
 class VirtualJointSpec(Base):
     name: ElementName
+    """The virtual joint's name (e.g. `virtual_joint`)."""
     type: Literal["fixed", "floating", "planar"]
+    """`fixed` (bolted to the world), `planar` (a base moving on the floor) or `floating`."""
     parent_frame: ElementName
+    """The frame outside the robot it connects to (e.g. `world`, `odom`)."""
     child_link: ElementName
+    """The robot's root link (SRDF003)."""
 
 
 class DisabledPairSpec(Base):
     link1: ElementName
+    """One link of a pair MoveIt never checks for collision (SRDF003)."""
     link2: ElementName
+    """The other link of the pair; each pair once (SPEC024)."""
     reason: Annotated[OneLine, StringConstraints(max_length=200)] = "User"
+    """Why the pair is disabled: free text, MoveIt's own reasons being `Adjacent`, `Default`, `Always` and `Never`;
+    default `User` (disabled by hand)."""
 
 
 class CollisionMatrixSpec(Base):
     """Settings of the sampled self-collision matrix; every field is written into the SRDF
     and evidence/collision_matrix.md, so the same spec gives the same bytes."""
 
-    default_state: Name | None = None  # a group state; default: the first one
+    default_state: Name | None = None
+    """The group state whose contacts are disabled as `Default` (SPEC100); default the first group state."""
     seed: Annotated[int, Field(ge=0, le=2**32 - 1)] = 0
+    """Seed of the random configurations (numpy PCG64), 0 to 2^32-1; default 0."""
     samples: Annotated[int, Field(ge=100, le=1_000_000)] = 10000
+    """How many random configurations are checked, 100 to 1,000,000; default 10000."""
     fraction: Annotated[float, Field(gt=0.0, lt=1.0)] = 0.95
+    """A pair in collision in more than this share of the samples is disabled as `Always`; between 0 and 1, default
+    0.95."""
     padding: Length = ZERO
+    """Margin around every collision shape (coal's security margin), a length from 0 to 100 mm (SPEC101); default 0."""
 
 
 class SemanticSpec(Base):
     virtual_joints: list[VirtualJointSpec] = []
+    """Joints from a frame outside the robot (`world`, `odom`) to its root link (SRDF `<virtual_joint>`)."""
     groups: list[GroupSpec] = []
+    """Planning groups (SRDF `<group>`): chains, links, joints, subgroups."""
     group_states: list[GroupStateSpec] = []
+    """Named joint values of a group (SRDF `<group_state>`), e.g. `ready`."""
     end_effectors: list[EndEffectorSpec] = []
+    """End effectors (SRDF `<end_effector>`)."""
     passive_joints: list[ElementName] = []
+    """Joints no actuator drives (SRDF `<passive_joint>`): they have no command interface (SRDF004) and belong in no
+    planning group (SRDF020)."""
     disable_collisions: list[DisabledPairSpec] = []
+    """Link pairs MoveIt never checks for collision, each with its reason; kept beside the pairs the collision matrix
+    computes."""
     collision_matrix: CollisionMatrixSpec | None = None
+    """Settings of the sampled self-collision matrix that `generate` writes into the SRDF (needs `descgen[collision]`,
+    GEN070)."""
 
 
 class FrameMeasurementSpec(Base):
     frame: ElementName
+    """The frame whose position was measured (e.g. `tool_link`); POSE002 when there is none."""
     xyz: tuple[Length, Length, Length]
+    """Its measured position in `relative_to`, three lengths (e.g. `[501 mm, 0 mm, 459 mm]`), compared with forward
+    kinematics axis by axis (POSE010)."""
     tolerance: Tolerance
+    """Allowed difference on each axis between measured and model position, a length (e.g. `2 mm`); plausible (UNIT004,
+    `plausibility.tolerance`)."""
     relative_to: ElementName | None = None
+    """The frame the position is measured in (POSE002 when there is none); default the root link."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class KnownPoseSpec(Base):
     name: Name
-    joints: dict[ElementName, JointRaw] = {}  # a list for a planar/floating virtual joint (no FK)
+    """The pose's name (e.g. `ready`), an identifier; group states (`pose:`), `poses` and `simulate --pose` use it."""
+    joints: dict[ElementName, JointRaw] = {}
+    """Joint values at this pose, each in its joint's unit (e.g. `{lift_joint: 150 mm}`); the others at zero. Unknown
+    joints: POSE001; outside limits: POSE003. A planar or floating virtual joint takes a list (not used by forward
+    kinematics)."""
     frames: list[FrameMeasurementSpec] = []
+    """Frame positions measured at this pose, checked against forward kinematics (POSE010)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
     description: Text | None = None
+    """A note about the pose for readers of the spec."""
 
 
 class ExternalFrameSpec(Base):
     """A transform something outside the URDF publishes (localisation, a driver, calibration)."""
 
     parent: ElementName
+    """The transform's parent frame (e.g. `map`)."""
     child: ElementName
+    """The transform's child frame (e.g. `odom`); one publisher per child frame (FRAME001)."""
     owner: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
+    """The node that publishes it (e.g. `amcl`)."""
     static: bool = False
+    """True: published on /tf_static (e.g. a calibration); false (default): on /tf."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class JointStateSourceSpec(Base):
     """A node publishing /joint_states; ``desired`` marks one that publishes commands."""
 
     node: Annotated[str, StringConstraints(pattern=r"^[A-Za-z][A-Za-z0-9_/]*$")]
+    """The node that publishes /joint_states (e.g. `gripper_driver`)."""
     kind: Literal["measured", "desired"] = "measured"
+    """`measured` (default) or `desired`: a node that publishes commanded values there is FRAME005."""
     joints: list[ElementName] = []
+    """The joints it publishes; empty (default): every joint. A joint with two publishers is FRAME005."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 class FramesSpec(Base):
     external: list[ExternalFrameSpec] = []
+    """Transforms published outside the URDF (localisation, a driver, calibration), each with its owner (FRAME001,
+    FRAME003, FRAME004)."""
     joint_state_sources: list[JointStateSourceSpec] = []
+    """/joint_states publishers besides ros2_control's joint_state_broadcaster (FRAME002, FRAME005)."""
 
 
 class RangeSpec(Base):
     min: Raw | None = None
+    """The smallest plausible magnitude for this role, a quantity of its kind (e.g. `0.1 mm` for `size`); default the
+    built-in bound (UNIT004)."""
     max: Raw | None = None
+    """The largest plausible magnitude for this role, a quantity of its kind (e.g. `30 m` for `offset`); default the
+    built-in bound (UNIT004)."""
 
 
 # What catkin_pkg (colcon's package.xml parser) accepts, so that generate's package.xml
@@ -851,8 +1189,6 @@ def _package_name(value: str) -> str:
 class PackageSpec(Base):
     """The generated ament package's metadata (package.xml)."""
 
-    # default <robot>_description (mesh_paths.package_name); set it when the robot's name
-    # makes no package name (2dof_planar) or the name is taken (UR's meshes are in ur_description)
     name: (
         Annotated[
             str,
@@ -862,20 +1198,26 @@ class PackageSpec(Base):
         ]
         | None
     ) = None
+    """The generated package's name, a REP 144 name (SPEC120); default `<robot>_description`. Set it when the robot's
+    name makes none (`2dof_planar`) or the name is taken (UR's meshes are in `ur_description`)."""
     version: Annotated[str, *_package_field("version", _CATKIN_VERSION, "write MAJOR.MINOR.PATCH, e.g. 0.1.0")] = (
         "0.1.0"
     )
+    """package.xml `<version>`, `MAJOR.MINOR.PATCH` (SPEC025); default `0.1.0`."""
     maintainer: Annotated[
         OneLine, StringConstraints(max_length=200), *_package_field("maintainer", None, "write a name")
     ] = "descgen user"
+    """package.xml `<maintainer>` name (SPEC025); default `descgen user`."""
     email: Annotated[
         str, *_package_field("email", _CATKIN_EMAIL, "write an address like name@example.com (no | ! # or spaces)")
     ] = "maintainer@example.com"
+    """The maintainer's email address, as catkin_pkg accepts it (SPEC025); default `maintainer@example.com`."""
     license: Annotated[
         OneLine,
         StringConstraints(max_length=200),
         *_package_field("license", None, "write an SPDX id, e.g. Apache-2.0"),
     ] = "Apache-2.0"
+    """package.xml `<license>`, an SPDX id (SPEC025); default `Apache-2.0`."""
 
 
 KinematicsPlugin = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+/[A-Za-z0-9_:]+$", max_length=200)]
@@ -887,8 +1229,12 @@ class KinematicsSpec(Base):
     MoveIt Setup Assistant writes (group_meta_config.hpp, jazzy)."""
 
     solver: KinematicsPlugin = KDL
+    """The IK plugin, `package/Class`; default `kdl_kinematics_plugin/KDLKinematicsPlugin`, which solves a chain only
+    (MOVEIT017)."""
     search_resolution: Annotated[Number, Field(gt=0.0, le=10.0)] = 0.005
+    """`kinematics_solver_search_resolution`, a plain number over 0 and at most 10; default 0.005."""
     timeout: Duration = Measured(0.005, "5 ms", "time")
+    """`kinematics_solver_timeout`, a positive duration (SPEC116); default `5 ms`."""
 
 
 class PilzLimitsSpec(Base):
@@ -896,10 +1242,17 @@ class PilzLimitsSpec(Base):
     the defaults are the Setup Assistant's template values."""
 
     max_trans_vel: LinearVelocity = Measured(1.0, "1 m/s", "linear_velocity")
+    """Largest Cartesian translation speed, a linear velocity; default `1 m/s`, positive (SPEC116)."""
     max_trans_acc: LinearAcceleration = Measured(2.25, "2.25 m/s^2", "linear_acceleration")
+    """Largest Cartesian translation acceleration; default `2.25 m/s^2`, positive (SPEC116)."""
     max_trans_dec: LinearAcceleration = Measured(-5.0, "-5 m/s^2", "linear_acceleration")
+    """Largest Cartesian translation deceleration, negative as Pilz writes it; default `-5 m/s^2`."""
     max_rot_vel: AngularVelocity = Measured(1.57, "1.57 rad/s", "angular_velocity")
+    """Largest Cartesian rotation speed, an angular velocity; default `1.57 rad/s`, positive (SPEC116)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 Scaling = Annotated[Number, Field(gt=0.0, le=1.0)]
@@ -909,14 +1262,23 @@ class MoveItSpec(Base):
     """Turns on the MoveIt config package ``<robot>_moveit_config`` (docs/moveit_config.md).
     Every joint of a planning group then needs velocity and acceleration limits (SPEC110)."""
 
-    # per group; a group that is one chain and is not listed gets the KDL defaults
     kinematics: dict[Name, KinematicsSpec] = {}
+    """IK solver settings per planning group (SPEC112 for an unknown group); a one-chain group not listed gets the KDL
+    defaults."""
     default_velocity_scaling_factor: Scaling = 0.1
+    """Share of each joint's velocity limit MoveIt plans with by default, over 0 and at most 1; default 0.1."""
     default_acceleration_scaling_factor: Scaling = 0.1
-    # the group state written to initial_positions.yaml; default: semantic.collision_matrix.default_state
+    """Share of each joint's acceleration limit MoveIt plans with by default, over 0 and at most 1; default 0.1."""
     initial_state: ElementName | None = None
+    """The group state written to initial_positions.yaml, where the demo's mock hardware starts (SPEC113); default
+    `semantic.collision_matrix.default_state`, else MoveIt's defaults."""
     pilz_cartesian_limits: PilzLimitsSpec = PilzLimitsSpec()
+    """Cartesian limits of the Pilz industrial motion planner (pilz_cartesian_limits.yaml); default the Setup
+    Assistant's values."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 def _passthrough_xml(xml: str) -> str:
@@ -933,7 +1295,12 @@ class PassthroughSpec(Base):
     written verbatim into the URDF; in the Xacro every ``$`` stays data (never evaluated)."""
 
     xml: Annotated[str, AfterValidator(_text), AfterValidator(_passthrough_xml)]
+    """One XML element written verbatim into the URDF (e.g. a `<gazebo>` tag); not a link, joint or material, and no
+    DOCTYPE or xacro instruction (IMP010)."""
     source: Source | None = None
+    """Where this element's values come from (a measurement-sheet row, drawing or datasheet, e.g. `M07`); it covers
+    every value inside the element. With `require_sources: true`, a value with no source on itself or around it is
+    SPEC010."""
 
 
 def _some_links(links: list[LinkSpec]) -> list[LinkSpec]:
@@ -976,38 +1343,66 @@ class WaiverSpec(Base):
     in every output; it fails no command. A waiver that matches nothing is a warning."""
 
     code: Annotated[str, StringConstraints(pattern=r"^[A-Z]+[0-9]{3}$")]
+    """The finding's code, e.g. `INER004`; only an audit rule's finding can be waived."""
     subject: Annotated[OneLine, StringConstraints(min_length=1, max_length=400)]
+    """The finding's subject exactly as findings print it, e.g. `link:finger`."""
     reason: Annotated[OneLine, StringConstraints(min_length=1, max_length=400)]
+    """Why the team accepts the finding for now (SARIF's justification), e.g. `CAD inertia pending`."""
 
 
 class RobotSpec(Base):
     """One robot. See specs/warehouse_arm.yaml for a complete example."""
 
     name: RobotName
+    """The robot's name: the URDF's `<robot name>` and the stem of the generated files; letters, digits and `_`
+    (SPEC050)."""
     description: Text | None = None
+    """About the robot: a comment at the top of the URDF and the package.xml `<description>` (default
+    `Robot description of <name>`)."""
     package: PackageSpec = PackageSpec()
+    """The generated package's metadata (package.xml): name, version, maintainer, email, license."""
     require_sources: bool = False
+    """When true, every measured value cites a source, on itself or on an element around it (SPEC010); default false."""
     plausibility: dict[str, RangeSpec] = {}
+    """Plausible ranges per role (`offset`, `size`, `mass`, `angle`, `joint_angle`, `joint_travel`, ..., `density`)
+    overriding the built-in ones, e.g. `{offset: {max: 30 m}}` (UNIT004, UNIT010)."""
     materials: list[MaterialSpec] = []
+    """Named colours and textures that visuals refer to, each name once (SPEC026)."""
     links: Annotated[
         list[LinkSpec], AfterValidator(_some_links), Field(validate_default=True, json_schema_extra={"minItems": 1})
     ] = []
+    """The robot's links; at least one (SPEC023), and exactly one without a parent joint (TOPO001)."""
     joints: list[JointSpec] = []
+    """The joints that connect the links into one tree (TOPO001-TOPO005)."""
     parts: list[PartSpec] = []
+    """Parts built more than once (left and right wheel): one link and joint body, one copy per instance; one Xacro
+    macro."""
     sensors: list[SensorSpec] = []
+    """Sensor frames: `<name>_link` on a fixed `<name>_joint`; a camera also gets its optical frame."""
     ros2_control: Ros2ControlSpec | None = None
+    """The ros2_control hardware (`<ros2_control>` blocks), the controller manager's rate and the controllers
+    (ros2_controllers.yaml)."""
     semantic: SemanticSpec | None = None
+    """The SRDF: planning groups, group states, end effectors, virtual and passive joints, disabled collision pairs."""
     known_poses: list[KnownPoseSpec] = []
+    """Poses measured on the robot: joint values and frame positions, checked by forward kinematics (POSE010)."""
     frames: FramesSpec = FramesSpec()
-    # Folders relative to the spec (inside the project) that hold the ROS packages its
-    # ``package://`` meshes name; recorded so every command resolves them alike (mesh_paths.py).
+    """Transforms and /joint_states publishers outside the URDF, for the frame-ownership checks (FRAME001-FRAME005)."""
     package_paths: list[Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]] = []
-    # A folder of template overrides relative to the spec, so generate and check use the same;
-    # rendered sandboxed, since a spec is someone else's data (--templates is not).
+    """Folders, relative to the spec and inside the project, that hold the ROS packages `package://` meshes name, so
+    every command resolves them alike (SPEC062, SPEC064)."""
     templates: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)] | None = None
+    """A folder of template overrides relative to the spec, which generate and check both use; rendered sandboxed, as a
+    spec may be someone else's data (SPEC064, GEN061)."""
     passthrough: list[PassthroughSpec] = []
+    """XML elements the spec cannot express (`<gazebo>`, `<transmission>`, ...), written verbatim into the URDF
+    (IMP010)."""
     moveit: MoveItSpec | None = None
+    """Turns on the MoveIt config package `<robot>_moveit_config`; every planning joint then needs velocity and
+    acceleration limits (SPEC111, SPEC110)."""
     waivers: list[WaiverSpec] = []
+    """Findings the team accepts for now, by code and subject: still reported, as waived, and failing no command; a
+    waiver that matches nothing is SPEC130."""
 
 
 __all__ = ["Measured", "RobotSpec"]

@@ -19,6 +19,7 @@ from pydantic_core import PydanticCustomError
 from descgen.core import display, units
 from descgen.core.record import record
 
+_SOURCE_DESCRIPTION = "where the value comes from, e.g. the measurement-sheet row M01 (see require_sources, SPEC010)"
 QUANTITY_SCHEMA: dict[str, Any] = {
     "anyOf": [
         {"type": "string", "description": 'a number and a unit, e.g. "300 mm"'},
@@ -27,8 +28,11 @@ QUANTITY_SCHEMA: dict[str, Any] = {
             "type": "object",
             # {value: 0, source: ...} as import writes a zero (a bare 0 needs no unit)
             "properties": {
-                "value": {"anyOf": [{"type": "string"}, {"type": "number", "const": 0}]},
-                "source": {"type": "string"},
+                "value": {
+                    "anyOf": [{"type": "string"}, {"type": "number", "const": 0}],
+                    "description": 'the value with its unit, e.g. "170 mm" (a bare 0 needs none)',
+                },
+                "source": {"type": "string", "description": _SOURCE_DESCRIPTION},
             },
             "required": ["value"],
             "additionalProperties": False,
@@ -229,8 +233,10 @@ _JOINT_VALUE_SCHEMA: dict[str, Any] = {
                     "type": "array",
                     "items": {"anyOf": [{"type": "string"}, {"type": "number"}]},
                     "minItems": 1,
+                    "description": "the joint's values in MoveIt's variable order, e.g. [0 mm, 0 mm, 90 deg] for x, y, "
+                    "theta of a planar joint",
                 },
-                "source": {"type": "string"},
+                "source": {"type": "string", "description": _SOURCE_DESCRIPTION},
             },
             "required": ["value"],
             "additionalProperties": False,
