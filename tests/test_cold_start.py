@@ -366,3 +366,77 @@ def test_the_collector_pauses_only_for_one_shot_commands_and_comes_back(
     assert gc.isenabled()
     assert cli.main([command, "specs/warehouse_arm.yaml"]) == 0
     assert seen == [not paused] and gc.isenabled()
+
+
+def _failing_dot(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, body: str) -> Path:
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    stub = bin_dir / "dot"
+    stub.write_text("#!/bin/sh\n" + body, encoding="utf-8")
+    stub.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}")
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    (evidence / "frames.dot").write_text("digraph frames { a -> b }\n", encoding="utf-8")
+    return evidence
+
+
+def test_a_dot_that_does_not_finish_is_a_warning_not_a_traceback(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from descgen.commands.generate import draw_frames
+    from descgen.write import frames_svg
+
+    evidence = _failing_dot(tmp_path, monkeypatch, "exec sleep 30\n")
+    monkeypatch.setattr(frames_svg, "DOT_SECONDS", 0.3)
+    found = draw_frames(tmp_path / "pkg")
+    assert [(f.code, f.severity) for f in found] == [("GEN094", "warning")]
+    assert "did not finish in 0.3 s" in found[0].message
+    assert sorted(p.name for p in evidence.iterdir()) == ["frames.dot"]  # no drawing, no temporary file left
+
+
+def test_a_dot_that_fails_is_a_warning_with_what_it_said(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from descgen.commands.generate import draw_frames
+
+    evidence = _failing_dot(tmp_path, monkeypatch, "echo 'Error: syntax error in line 1' >&2\nexit 3\n")
+    found = draw_frames(tmp_path / "pkg")
+    assert [f.code for f in found] == ["GEN094"]
+    assert "exit 3" in found[0].message and "syntax error in line 1" in found[0].message
+    assert not (evidence / "frames.svg").exists()
+
+
+def test_a_tree_too_large_to_draw_is_said_and_its_old_drawing_removed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from descgen.commands.generate import draw_frames
+    from descgen.write.frames_svg import MAX_DRAWN_EDGES
+
+    log = _stub_dot(tmp_path, monkeypatch)
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    dot, svg = evidence / "frames.dot", evidence / "frames.svg"
+    edges = "".join(f'  "l{i}" -> "l{i + 1}";\n' for i in range(MAX_DRAWN_EDGES))
+    dot.write_text("digraph frames {\n" + edges + "}\n", encoding="utf-8")
+    assert draw_frames(tmp_path / "pkg") == [] and svg.is_file()  # at the bound: drawn
+    dot.write_text("digraph frames {\n" + edges + '  "x" -> "y";\n}\n', encoding="utf-8")
+    found = draw_frames(tmp_path / "pkg")
+    assert [(f.code, f.severity) for f in found] == [("GEN095", "info")]
+    assert f"{MAX_DRAWN_EDGES + 1:,} transforms" in found[0].message
+    assert not svg.exists() and _calls(log) == 1  # the old drawing showed another tree; dot not run
+
+
+def test_the_drawing_is_readable_by_everyone_as_the_package_files_are(tmp_path: Path) -> None:
+    from descgen.commands.generate import draw_frames
+
+    require_tool("dot")
+    evidence = tmp_path / "pkg" / "evidence"
+    evidence.mkdir(parents=True)
+    (evidence / "frames.dot").write_text('digraph frames { "base_link" -> "tool0" }\n', encoding="utf-8")
+    old = os.umask(0o022)
+    try:
+        draw_frames(tmp_path / "pkg")
+        plain = tmp_path / "plain"
+        plain.write_text("x", encoding="utf-8")  # what open() makes under the same umask
+    finally:
+        os.umask(old)
+    assert (evidence / "frames.svg").stat().st_mode & 0o777 == plain.stat().st_mode & 0o777 == 0o644

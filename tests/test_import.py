@@ -136,6 +136,20 @@ def test_existing_output_is_not_replaced_without_force(tmp_path: Path) -> None:
     assert spec.read_text().startswith("# Imported from tiny.urdf")
 
 
+def test_the_spec_is_written_with_the_mode_open_gives_under_the_umask(tmp_path: Path) -> None:
+    """Written through a temporary file (mkstemp: 0600), then renamed: a teammate or a CI user
+    must read it as any file the user makes."""
+    import os
+
+    old = os.umask(0o027)
+    try:
+        ran = cli("import", _write(tmp_path), "-o", tmp_path / "o.yaml")
+    finally:
+        os.umask(old)
+    assert ran.returncode == 0, ran.stderr
+    assert (tmp_path / "o.yaml").stat().st_mode & 0o777 == 0o640
+
+
 def test_unusable_input_exits_2_without_traceback(tmp_path: Path) -> None:
     ran = cli("import", _write(tmp_path, "<robot name='x'><link name='a'></robot>"), "-o", tmp_path / "o.yaml")
     assert ran.returncode == 2 and "Traceback" not in ran.stderr and "error[" in ran.stderr

@@ -1,6 +1,6 @@
-"""The persistent mesh-facts cache (descgen/meshes/cache.py) and the numpy binary-STL reader
-(descgen/meshes/load.py ``_stl_facts``): a cache hit answers as a parse would, a tampered entry is
-never trusted, a changed file is measured again, and the numpy reader equals trimesh."""
+"""The persistent mesh-facts cache (descgen/meshes/cache.py): a cache hit answers as a
+measurement would, a tampered entry is never trusted, a changed file is measured again. The
+one-pass box reader is held to trimesh in tests/test_mesh_bounds.py."""
 
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def _no_parsing(monkeypatch: pytest.MonkeyPatch) -> None:
         raise AssertionError("a mesh was parsed although its facts were cached")
 
     monkeypatch.setattr(meshes, "_parse", refuse)
-    monkeypatch.setattr(meshes, "_stl_facts", refuse)
+    monkeypatch.setattr(meshes, "_measured", refuse)
 
 
 def _box(path: Path, extents: tuple[float, float, float]) -> Path:
@@ -60,9 +60,9 @@ def _entries(folder: Path) -> list[Path]:
 def test_a_cache_hit_answers_without_parsing_and_equals_the_parse(cache: Path, tmp_path: Path, monkeypatch) -> None:
     mesh = _box(tmp_path / "box.stl", (0.1, 0.2, 0.3))
     cold = meshes.measure(mesh)
-    assert cold.volume == pytest.approx(0.1 * 0.2 * 0.3, rel=1e-6)  # hand value (float32 corners)
+    assert cold.upper == pytest.approx((0.05, 0.1, 0.15), rel=1e-6)  # hand value (float32 corners)
     (entry,) = _entries(cache)
-    assert json.loads(entry.read_text())["triangles"] == 12  # a box: 6 faces x 2 triangles
+    assert json.loads(entry.read_text())["lower"] == pytest.approx([-0.05, -0.1, -0.15], rel=1e-6)
     _forget()
     _no_parsing(monkeypatch)
     assert meshes.measure(mesh) == cold
@@ -97,16 +97,16 @@ def _tamper(entry: Path, how: str) -> None:
         entry.write_text(entry.read_text()[:-5])
     elif how == "nan":
         entry.write_text(entry.read_text().replace(str(doc["upper"][0]), "NaN", 1))
-    elif how == "infinity volume":
-        entry.write_text(entry.read_text().replace(json.dumps(doc["volume"]), "1e999", 1))
+    elif how == "infinity coordinate":
+        entry.write_text(entry.read_text().replace(json.dumps(doc["upper"][1]), "1e999", 1))
     elif how == "string coordinate":
         entry.write_text(json.dumps({**doc, "lower": ["0", 0, 0]}))
-    elif how == "bool count":
-        entry.write_text(json.dumps({**doc, "triangles": True}))
-    elif how == "negative volume":
-        entry.write_text(json.dumps({**doc, "volume": -1.0}))
-    elif how == "volume without watertight":
-        entry.write_text(json.dumps({**doc, "watertight": False}))
+    elif how == "bool unit":
+        entry.write_text(json.dumps({**doc, "unit_meter": True}))
+    elif how == "negative unit":
+        entry.write_text(json.dumps({**doc, "unit_meter": -0.001}))
+    elif how == "old schema's fields":
+        entry.write_text(json.dumps({**doc, "volume": None, "watertight": False, "triangles": 12, "open_edges": 0}))
     elif how == "lower above upper":
         entry.write_text(json.dumps({**doc, "lower": doc["upper"], "upper": doc["lower"]}))
     elif how == "extra key":
@@ -133,11 +133,11 @@ def _tamper(entry: Path, how: str) -> None:
 HOW = [
     "bad json",
     "nan",
-    "infinity volume",
+    "infinity coordinate",
     "string coordinate",
-    "bool count",
-    "negative volume",
-    "volume without watertight",
+    "bool unit",
+    "negative unit",
+    "old schema's fields",
     "lower above upper",
     "extra key",
     "other schema",
@@ -236,7 +236,6 @@ def test_a_rewritten_file_of_another_size_is_hashed_again(cache, tmp_path, monke
     os.utime(mesh, ns=(old.st_atime_ns, old.st_mtime_ns))  # even with the old time stamp
     assert mesh.stat().st_size != old.st_size
     facts = meshes.measure(mesh)
-    assert facts.triangles == 80  # an icosphere of one subdivision: 20 * 4 faces, not the box's 12
     assert facts.upper == pytest.approx((2.0, 2.0, 2.0), abs=1e-6)
 
 
@@ -392,53 +391,3 @@ def test_cached_facts_give_the_findings_of_a_cold_run_on_corpus_robots(cache: Pa
     _forget()
     _no_parsing(monkeypatch)
     assert findings() == cold
-
-
-# -- the numpy binary-STL reader ------------------------------------------------------------------
-
-
-def _trimesh_facts(data: bytes) -> meshes.MeshFacts:
-    return meshes._parse(data, "stl").facts
-
-
-def test_numpy_stl_equals_trimesh_on_made_meshes() -> None:
-    box = trimesh.creation.box(extents=(0.1, 0.2, 0.3))
-    opened = trimesh.Trimesh(box.vertices, box.faces[:-1], process=False)  # one triangle removed: 3 open edges
-    flipped = trimesh.Trimesh(box.vertices, [f[::-1] if i == 0 else f for i, f in enumerate(box.faces)], process=False)
-    sphere = trimesh.creation.icosphere(subdivisions=3, radius=0.05)
-    for mesh in (box, opened, flipped, sphere):
-        data = mesh.export(file_type="stl")
-        fast = meshes._stl_facts(data)
-        assert fast is not None and fast == _trimesh_facts(data)
-    assert meshes._stl_facts(opened.export(file_type="stl")).open_edges == 3  # type: ignore[union-attr]
-    assert not meshes._stl_facts(flipped.export(file_type="stl")).watertight  # type: ignore[union-attr]
-
-
-def test_numpy_stl_leaves_other_files_to_trimesh() -> None:
-    box = trimesh.creation.box(extents=(1, 1, 1))
-    binary = box.export(file_type="stl")
-    assert meshes._stl_facts(trimesh.exchange.stl.export_stl_ascii(box).encode()) is None
-    assert meshes._stl_facts(binary[:-10]) is None  # length disagrees with the header's count
-    assert meshes._stl_facts(binary[:84]) is None  # zero triangles read
-    nan = bytearray(binary)
-    nan[84 + 12 : 84 + 16] = b"\x00\x00\xc0\x7f"  # first corner x = NaN (float32)
-    assert meshes._stl_facts(bytes(nan)) is None
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(share() is None, reason="example-robot-data is not installed")
-def test_numpy_stl_equals_trimesh_on_every_corpus_stl() -> None:
-    root = share()
-    assert root is not None
-    files = sorted(
-        {p.resolve() for p in (root / "example-robot-data" / "robots").rglob("*") if p.suffix.lower() == ".stl"}
-    )
-    assert len(files) > 300
-    fast = 0
-    for path in files:
-        data = path.read_bytes()
-        got = meshes._stl_facts(data)
-        if got is not None:
-            fast += 1
-            assert got == _trimesh_facts(data), path
-    assert fast >= len(files) - 5  # nearly all are binary; the rest went to trimesh

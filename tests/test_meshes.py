@@ -135,11 +135,14 @@ def test_unreadable_mesh_inertia_is_an_input_error(tmp_path: Path) -> None:
 
 def test_measure_box_in_file_units(tmp_path: Path) -> None:
     box = trimesh.creation.box([100, 200, 300])
-    facts = meshes.measure(_ascii_stl(box, tmp_path / "box.stl"))
-    assert facts.problem is None and facts.watertight and facts.triangles == 12
+    path = _ascii_stl(box, tmp_path / "box.stl")
+    facts = meshes.measure(path)
+    assert facts.problem is None
     np.testing.assert_allclose(facts.lower or (), (-50, -100, -150))
     np.testing.assert_allclose(facts.upper or (), (50, 100, 150))
-    assert facts.volume == pytest.approx(100 * 200 * 300, rel=1e-12)
+    loaded = meshes.load(path)  # what only the built mesh tells, for the spec's mesh inertia
+    assert loaded.watertight and len(loaded.faces) == 12 and loaded.open_edges == 0
+    assert loaded.volume == pytest.approx(100 * 200 * 300, rel=1e-12)
     assert meshes.size_in_metres(facts, (0.001, 0.001, 0.001)) == pytest.approx((0.1, 0.2, 0.3), rel=1e-12)
 
 
@@ -182,6 +185,10 @@ def test_unusable_files_give_a_problem_not_a_traceback(tmp_path: Path, name: str
 
 
 def test_same_bytes_are_parsed_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """With a cache folder the bytes are hashed (the entry's name), so two files of the same
+    content are one measurement; with caching off only the stat data names a file (hashing
+    the corpus's meshes costs more than measuring its few copies twice)."""
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", str(tmp_path / "cache"))
     calls: list[str] = []
     real = meshes._parse
 
@@ -195,6 +202,10 @@ def test_same_bytes_are_parsed_once(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     b = _ascii_stl(box, tmp_path / "b.stl")
     assert meshes.measure(a) == meshes.measure(b) == meshes.measure(a)
     assert calls == ["stl"]
+    monkeypatch.setenv("DESCGEN_CACHE_DIR", "")
+    c = _ascii_stl(trimesh.creation.box([0.321, 0.654, 0.987]), tmp_path / "c.stl")
+    assert meshes.measure(c) == meshes.measure(c)
+    assert calls == ["stl", "stl"]  # one file, unchanged: measured once
 
 
 # -- the audit on example-robot-data: one mesh exported in millimetres --------------------------

@@ -287,3 +287,23 @@ GEN093 = declare(
       The file is expanded with xacro (sandboxed, both packages on the package path) and compared with the
       model. Report it; fix the template (robot.ros2_control.xacro.j2, moveit_urdf.xacro.j2) that changed.""",
 )
+
+GEN094 = declare(
+    "GEN094",
+    "frames-drawing-failed",
+    "warning",
+    "Graphviz's dot failed on evidence/frames.dot or did not finish in time; frames.svg was not drawn.",
+    """The drawing is a convenience beside frames.dot and frames.md, which are written and checked as
+      always; nothing else depends on it. Draw it by hand (dot -Tsvg evidence/frames.dot), or look at
+      what dot printed.""",
+)
+
+GEN095 = declare(
+    "GEN095",
+    "frames-drawing-skipped",
+    "info",
+    "The frame tree is too large to draw: frames.svg is not drawn (an old one is removed).",
+    """Graphviz's layout grows faster than the tree (a 10,000-frame tree takes dot 15-50 s, and no
+      reader follows such a drawing); frames.md lists every frame and its publisher, and frames.dot can
+      still be drawn by hand (dot -Tsvg, or sfdp for a large tree).""",
+)

@@ -232,17 +232,17 @@ def generate(
                 )
             ]
         ) from None
-    written.findings = outcome.findings
-    draw_frames(p.package_dir)
+    written.findings = [*outcome.findings, *draw_frames(p.package_dir)]
     return written
 
 
-def draw_frames(package_dir: Path) -> None:
+def draw_frames(package_dir: Path) -> list[Finding]:
     """evidence/frames.svg from frames.dot when Graphviz's dot is installed, and only when the
-    svg does not already record this dot text and this dot (see frames_svg)."""
+    svg does not already record this dot text and this dot (see frames_svg); findings when the
+    tree is too large to draw or dot fails."""
     from descgen.write.frames_svg import draw
 
-    draw(package_dir)
+    return draw(package_dir)
 
 
 def check(

@@ -215,6 +215,19 @@ def read_in_folder(
     return read_bounded(real, what, limit, display=shown, codes=codes)
 
 
+def public_mode() -> int:
+    """The mode a file created with ``open()`` gets under this process's umask (0o644 under the
+    usual 022): for a file made with ``mkstemp`` (0o600) that users and their tools must read.
+    Linux states the umask in /proc; setting it to read it back would race other threads' files."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as fh:
+            mask = next(int(line.split()[1], 8) for line in fh if line.startswith("Umask:"))
+    except (OSError, StopIteration, ValueError, IndexError):
+        mask = os.umask(0o022)
+        os.umask(mask)
+    return 0o666 & ~mask
+
+
 def output_kind(path: Path) -> str | None:
     """What stands at an output path that must not be replaced: "a symbolic link", "a FIFO
     (named pipe)", "a directory", ... ; None when nothing is there or a regular file is (the

@@ -39,17 +39,18 @@ from descgen.core.cache_dir import CACHE_ENV, cache_root, write_atomic
 from descgen.infra import keys, stat_index
 from descgen.infra.safeio import MIB
 from descgen.infra.stat_index import Stat
-from descgen.meshes.facts import MAX_TRIANGLES, MeshFacts
+from descgen.meshes.facts import MeshFacts
 
-SCHEMA = 1  # bump when MeshFacts or how it is measured changes
+SCHEMA = 2  # bump when MeshFacts or how it is measured changes (2: the box alone, from meshes/bounds.py)
 MAX_ENTRY_BYTES = 4096  # a real entry is ~300 bytes; anything larger is not ours
 _KEY = re.compile(r"[0-9a-f]{64}")
 _KINDS = ("stl", "obj", "dae")
 INDEX = "stat-index"  # beside the entries' subfolders; not *.json: it is no facts entry
 MAX_INDEX_BYTES = 32 * MIB  # ~150 bytes per mesh: 200,000 meshes
 MAX_INDEX_ENTRIES = 200_000
-# what measures a mesh: trimesh (with pycollada for .dae) and numpy (binary STLs, meshes/load.py)
-LIBRARIES = ("trimesh", "pycollada", "numpy")
+# what measures a mesh: descgen/meshes/bounds.py (numpy, lxml), and trimesh (with pycollada for
+# .dae) for what that reader leaves to it
+LIBRARIES = ("trimesh", "pycollada", "numpy", "lxml")
 _INDEX = stat_index.StatIndex(INDEX, SCHEMA, MAX_INDEX_BYTES, MAX_INDEX_ENTRIES)
 
 
@@ -122,11 +123,7 @@ def _doc(key: str, kind: str, f: MeshFacts) -> dict[str, Any]:
         "kind": kind,
         "lower": list(f.lower) if f.lower is not None else None,
         "upper": list(f.upper) if f.upper is not None else None,
-        "volume": f.volume,
-        "watertight": f.watertight,
-        "triangles": f.triangles,
         "unit_meter": f.unit_meter,
-        "open_edges": f.open_edges,
         "problem": f.problem,
     }
 
@@ -139,10 +136,6 @@ def _real(v: Any) -> bool:
     return type(v) in (float, int) and math.isfinite(v)  # not bool (a subclass of int)
 
 
-def _count(v: Any, most: int) -> bool:
-    return type(v) is int and 0 <= v <= most
-
-
 def _vec(v: Any) -> tuple[float, float, float] | None:
     if type(v) is list and len(v) == 3 and all(_real(x) for x in v):
         return (float(v[0]), float(v[1]), float(v[2]))
@@ -151,8 +144,7 @@ def _vec(v: Any) -> tuple[float, float, float] | None:
 
 def _facts(doc: Any, key: str, kind: str) -> MeshFacts | None:
     """The facts in a parsed entry, or None unless every field is what put() writes."""
-    fields = {"schema", "sha256", "kind", "lower", "upper", "volume", "watertight", "triangles"}
-    fields |= {"unit_meter", "open_edges", "problem"}
+    fields = {"schema", "sha256", "kind", "lower", "upper", "unit_meter", "problem"}
     if type(doc) is not dict or set(doc) != set(fields):
         return None
     if doc["schema"] != SCHEMA or doc["sha256"] != key or doc["kind"] != kind or kind not in _KINDS:
@@ -161,35 +153,15 @@ def _facts(doc: Any, key: str, kind: str) -> MeshFacts | None:
     if problem is not None:
         if type(problem) is not str or not 0 < len(problem) <= 300 or "\n" in problem:
             return None
-        rest = (doc["lower"], doc["upper"], doc["volume"], doc["unit_meter"])
-        if rest != (None, None, None, None) or doc["watertight"] is not False:
+        if (doc["lower"], doc["upper"], doc["unit_meter"]) != (None, None, None):
             return None
-        if type(doc["triangles"]) is not int or doc["triangles"] != 0 or type(doc["open_edges"]) is not int:
-            return None
-        return MeshFacts(problem=problem) if doc["open_edges"] == 0 else None
-    lower, upper = _vec(doc["lower"]), _vec(doc["upper"])
-    volume, unit = doc["volume"], doc["unit_meter"]
+        return MeshFacts(problem=problem)
+    lower, upper, unit = _vec(doc["lower"]), _vec(doc["upper"]), doc["unit_meter"]
     if lower is None or upper is None or any(lo > hi for lo, hi in zip(lower, upper, strict=True)):
-        return None
-    if type(doc["watertight"]) is not bool or not _count(doc["triangles"], MAX_TRIANGLES) or doc["triangles"] == 0:
-        return None
-    if not _count(doc["open_edges"], 3 * MAX_TRIANGLES):
-        return None
-    if (volume is None) == doc["watertight"]:  # meshes.py measures a volume exactly when watertight
-        return None
-    if volume is not None and not (_real(volume) and volume >= 0):
         return None
     if unit is not None and not (_real(unit) and unit > 0):
         return None
-    return MeshFacts(
-        lower=lower,
-        upper=upper,
-        volume=None if volume is None else float(volume),
-        watertight=doc["watertight"],
-        triangles=doc["triangles"],
-        unit_meter=None if unit is None else float(unit),
-        open_edges=doc["open_edges"],
-    )
+    return MeshFacts(lower=lower, upper=upper, unit_meter=None if unit is None else float(unit))
 
 
 # -- the stat index: (path, size, mtime, inode, ctime) -> content key (descgen/infra/stat_index.py) ----

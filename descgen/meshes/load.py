@@ -50,11 +50,15 @@ class MeshError(Exception):
 
 @record
 class Loaded:
-    """A mesh read from its file: vertices (file units) and triangles, plus its facts."""
+    """A mesh built from its file by trimesh: vertices (file units) and triangles, its facts,
+    and what only the built mesh tells (for the spec's inertia from a mesh)."""
 
     vertices: np.ndarray  # (n, 3) float64
     faces: np.ndarray  # (m, 3) int64
     facts: MeshFacts
+    watertight: bool  # every edge in two triangles, wound consistently: it bounds a solid
+    volume: float | None  # only for a watertight mesh: otherwise it means nothing
+    open_edges: int  # edges of one triangle only: why it is not watertight
 
 
 _CACHE: dict[str, Loaded | MeshError] = {}  # sha256 of the bytes -> what they gave
@@ -104,8 +108,8 @@ def measure(path: Path | str) -> MeshFacts:
     """The facts of the mesh at ``path``; a mesh that cannot be read gives facts with a ``problem``.
 
     Looked up by content: in this process, then in the persistent cache (descgen/meshes/cache.py),
-    and only then parsed; a binary STL is measured with numpy (:func:`_stl_facts`), other
-    formats by trimesh. Hashing the bytes is ~100x cheaper than parsing them."""
+    and only then measured: the bounding box in one pass over the file (descgen/meshes/bounds.py),
+    trimesh only for what that reader leaves to it. Hashing the bytes is ~10x cheaper than that."""
     from descgen.meshes import cache as mesh_cache  # the persistent cache only when a mesh is measured
 
     kind = os.path.splitext(path)[1].lower().lstrip(".")  # Path.suffix, without making a Path
@@ -135,7 +139,10 @@ def measure(path: Path | str) -> MeshFacts:
         data = read_bounded(Path(path), "mesh", MAX_MESH_BYTES)
     except InputError as exc:
         return MeshFacts(problem=exc.findings[0].message)
-    key = _content_key(data, kind)
+    # the content hash names the entry of the persistent cache; with that cache off, this
+    # process knows the file by its stat data alone (hashing the corpus's meshes is ~0.3 s)
+    caching = mesh_cache.folder() is not None or seen is None
+    key = _content_key(data, kind) if caching else f"unhashed:{seen}"
     facts = _FACTS.get(key) or mesh_cache.get(key, kind)
     if facts is None:
         facts = _measured(data, kind)
@@ -150,8 +157,11 @@ def measure(path: Path | str) -> MeshFacts:
 
 
 def _measured(data: bytes, kind: str) -> MeshFacts:
+    from descgen.meshes.bounds import bounds
+
     try:
-        fast = _stl_facts(data) if kind == "stl" else None
+        unit = _checked(data, kind)
+        fast = bounds(data, kind, unit)
         return fast if fast is not None else _parse(data, kind).facts
     except MeshError as exc:
         return MeshFacts(problem=str(exc))
@@ -174,95 +184,23 @@ def _stat_key(path: Path) -> tuple[str, int, int, int, int] | None:
 
 
 def _content_key(data: bytes, kind: str) -> str:
-    return hashlib.sha256(kind.encode() + b"\0" + data).hexdigest()
+    digest = hashlib.sha256(kind.encode() + b"\0")
+    digest.update(data)  # not kind + data: that copies every byte once more
+    return digest.hexdigest()
 
 
-# one binary STL triangle: normal, three corners (little-endian float32), attribute byte count
-_STL_RECORD_FIELDS = [("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attribute", "<u2")]
-_STL_RECORD_BYTES = 50
-_MERGE_DIGITS = 8  # trimesh merges vertices equal to 8 decimals (tol.merge = 1e-8)
-
-
-def _stl_facts(data: bytes) -> MeshFacts | None:
-    """The facts of a binary STL measured with numpy, equal to what :func:`_parse` gets through
-    trimesh (``trimesh.load(process=True)``: vertices merged when equal to 8 decimals, keeping
-    the first; edges, watertightness, winding and volume computed as trimesh computes them;
-    tests/test_mesh_cache.py compares both on every corpus STL). None for anything but a
-    well-formed binary STL of finite corners (ASCII, a length that disagrees with the header's
-    count, NaN): trimesh decides those, as before. Several times faster than trimesh's load."""
-    if len(data) < 84:
-        return None
-    (count,) = struct.unpack_from("<I", data, 80)
-    if count == 0 or count > MAX_TRIANGLES or len(data) != 84 + _STL_RECORD_BYTES * count:
-        return None  # trimesh tries binary by exactly this length test, then ASCII
-    import numpy as np
-
-    record = np.dtype(_STL_RECORD_FIELDS)
-    corners = np.frombuffer(data, dtype=record, count=count, offset=84)["corners"]
-    points = corners.reshape(-1, 3).astype(np.float64)
-    if not np.isfinite(points).all():
-        return None  # trimesh drops non-finite vertices first
-    # merge: one group per rounded position, represented by its first point (stable sort)
-    rounded = (points * (10**_MERGE_DIGITS)).round().astype(np.int64)
-    order = np.lexsort((rounded[:, 2], rounded[:, 1], rounded[:, 0]))
-    ranked = rounded[order]
-    starts = np.empty(len(points), dtype=bool)
-    starts[0] = True
-    starts[1:] = np.any(ranked[1:] != ranked[:-1], axis=1)
-    index = np.empty(len(points), dtype=np.int64)
-    index[order] = np.cumsum(starts) - 1
-    vertices = points[order[starts]]
-    faces = index.reshape(-1, 3)
-    lo, hi = vertices.min(axis=0), vertices.max(axis=0)  # every kept vertex is a corner of a triangle
-    watertight, winding, open_edges = _edge_facts(faces)
-    volume = None
-    if watertight and winding:
-        # trimesh.triangles.mass_properties: integral[0] = cross_x * (x0 + x1 + x2), summed / 6
-        triangles = vertices[faces]
-        vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-        crosses = np.cross(vectors[:, 0], vectors[:, 1])
-        f1 = triangles[:, 0, :] + triangles[:, 1, :] + triangles[:, 2, :]
-        volume = abs(float((crosses[:, 0] * f1[:, 0]).sum() / 6.0))
-    return MeshFacts(
-        lower=(float(lo[0]), float(lo[1]), float(lo[2])),
-        upper=(float(hi[0]), float(hi[1]), float(hi[2])),
-        volume=volume,
-        watertight=bool(watertight and winding),
-        triangles=count,
-        unit_meter=None,
-        open_edges=open_edges,
-    )
-
-
-def _edge_facts(faces: np.ndarray) -> tuple[bool, bool, int]:
-    """(every edge in exactly two triangles, every such pair runs in opposite directions,
-    edges of one triangle only): trimesh.graph.is_watertight and :func:`_open_edges`."""
-    import numpy as np
-
-    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    ends = np.sort(edges, axis=1)
-    lo = int(ends.min())
-    span = int(ends.max()) - lo + 1
-    keys = (ends[:, 0] - lo) * span + (ends[:, 1] - lo)
-    order = np.argsort(keys)  # which of a pair comes first does not matter to the winding test
-    ranked = keys[order]
-    starts = np.flatnonzero(np.concatenate(([True], ranked[1:] != ranked[:-1])))
-    counts = np.diff(np.append(starts, len(ranked)))
-    watertight = bool(np.all(counts == 2))
-    pairs = starts[counts == 2]
-    first, second = edges[order[pairs]], edges[order[pairs + 1]]
-    winding = bool(np.all(first[:, 1] == second[:, 0]))
-    return watertight, winding, int(np.count_nonzero(counts == 1))
+def _checked(data: bytes, kind: str) -> float | None:
+    """Refuse what no parser should see (an absurd STL triangle count, a COLLADA DTD); the
+    unit a COLLADA file declares."""
+    if kind == "stl":
+        _check_stl(data)
+    return _check_dae(data) if kind == "dae" else None
 
 
 def _parse(data: bytes, kind: str) -> Loaded:
     import numpy as np
 
-    unit = None
-    if kind == "stl":
-        _check_stl(data)
-    elif kind == "dae":
-        unit = _check_dae(data)
+    unit = _checked(data, kind)
     mesh = _trimesh(data, kind)
     vertices = np.asarray(mesh.vertices, dtype=np.float64)
     faces = np.asarray(mesh.faces, dtype=np.int64)
@@ -276,13 +214,9 @@ def _parse(data: bytes, kind: str) -> Loaded:
     facts = MeshFacts(
         lower=(float(lo[0]), float(lo[1]), float(lo[2])),
         upper=(float(hi[0]), float(hi[1]), float(hi[2])),
-        volume=volume,
-        watertight=watertight,
-        triangles=len(faces),
         unit_meter=unit,
-        open_edges=_open_edges(faces),
     )
-    return Loaded(vertices, faces, facts)
+    return Loaded(vertices, faces, facts, watertight, volume, _open_edges(faces))
 
 
 def _trimesh(data: bytes, kind: str) -> Any:  # trimesh.Trimesh (untyped)

@@ -107,11 +107,11 @@ def _from_mesh(conv: Converter, spec: s.InertialSpec, mesh: m.Mesh, origin: m.Po
     if loaded is None:
         conv.error(INER031, f"cannot compute inertia from {spec.from_}: {problem}", _GIVE, subject, where)
         return m.Inertial(spec.mass.si, pose(spec.origin), None, conv.where(path))
-    if not loaded.facts.watertight:
+    if not loaded.watertight:
         conv.error(
             INER030,
             f"cannot compute inertia from {spec.from_}: mesh '{mesh.filename}' is not watertight "
-            f"({loaded.facts.open_edges} open edges, or inconsistent winding), so it bounds no solid",
+            f"({loaded.open_edges} open edges, or inconsistent winding), so it bounds no solid",
             "close the mesh in your CAD tool (or use its convex hull), or " + _GIVE,
             subject,
             where,

@@ -41,7 +41,7 @@ from descgen.commands.importer.structure import Structure, recognise
 from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
-from descgen.infra.safeio import check_file, read_bounded
+from descgen.infra.safeio import check_file, public_mode, read_bounded
 from descgen.meshes.paths import package_root
 from descgen.read.description import Options, kind_of
 from descgen.read.srdf import read_srdf_text
@@ -718,6 +718,7 @@ def write_spec(path: Path, text: str) -> None:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
+        os.chmod(tmp, public_mode())  # mkstemp's file is private; a spec is for the team and its tools
         refuse_unsafe_output(path)  # swapped in while the spec was written
         os.replace(tmp, path)
     except BaseException:
