@@ -515,6 +515,7 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("audit", "--launch-arg", ["audit", NOSPEC, "--launch-arg", "joint_prefix"], "error[CTRL054]: --launch-arg"),
     ("audit", "--package-path", ["audit", NOSPEC, "--package-path", "{tmp}/none"], "argument --package-path: '"),
     ("audit", "--baseline", ["audit", NOSPEC, "--baseline", ""], "argument --baseline: an empty path names nothing"),
+    ("audit", "--no-waivers", ["audit", NOSPEC, "--no-waivers=1"], "argument --no-waivers: ignored explicit argument"),
     (
         "audit",
         "--write-baseline",

@@ -331,6 +331,18 @@ def test_generate_and_check_pass_with_the_reviewed_defects_waived(case: Case, tm
         assert ran.returncode == 0, (command, ran.stderr[-2000:])
         assert _error_codes(ran.stderr) <= allowed, command
         assert ran.stderr.count("  waived: imported as is") == len(re.findall(r"error\[\w+\]", ran.stderr)), command
+    # one verdict: the audit of what generate wrote (its descgen-waivers.yaml read) passes as check did
+    (package,) = [p for p in out.iterdir() if p.name.endswith("_description")]
+    (urdf,) = package.glob("urdf/*.urdf")
+    audit = ["audit", urdf, "--package-path", CORPUS]
+    audit += [x for srdf in package.glob("srdf/*.srdf") for x in ("--srdf", srdf)]
+    audit += [x for c in package.glob("config/ros2_controllers.yaml") for x in ("--controllers", c)]
+    ran = cli(*audit, cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr[-2000:]
+    raw = cli(*audit, "--no-waivers", cwd=tmp_path)
+    waived_errors = len(re.findall(r"error\[\w+\].*\n  waived: imported as is \(descgen-waivers.yaml\)", ran.stderr))
+    assert raw.returncode == (1 if waived_errors else 0), raw.stderr[-2000:]
+    assert len(re.findall(r"error\[\w+\]", raw.stderr)) == waived_errors
 
 
 # --------------------------------------------------------------------------- (e) the same robot

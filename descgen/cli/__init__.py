@@ -218,7 +218,9 @@ def _cmd_audit(args: argparse.Namespace) -> int:
     from descgen.infra.progress import counting, wanted
     from descgen.read.description import audit_paths
 
-    options = dataclasses.replace(_description_options(args), moveit_config=args.moveit_config)
+    options = dataclasses.replace(
+        _description_options(args), moveit_config=args.moveit_config, package_waivers=not args.no_waivers
+    )
     paths = [Path(p) for p in args.path]
     show = wanted(args.format == "text") and len(paths) > 1
     with counting(len(paths), "audit", "file", show) as step:
@@ -603,6 +605,12 @@ def parser() -> argparse.ArgumentParser:
         type=types.path,
         metavar="FILE",
         help="write this audit's findings to FILE as the baseline (the exit code is still this audit's)",
+    )
+    a.add_argument(
+        "--no-waivers",
+        action="store_true",
+        help="ignore the descgen-waivers.yaml of the package a description is in (generate writes it from the "
+        "spec's waivers:)",
     )
     a.add_argument(
         "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"

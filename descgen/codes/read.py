@@ -306,3 +306,13 @@ READ048 = declare(
       set" when a node that it reaches starts (docs/ros2_parameters.md). Give the list its values, or
       delete the line.""",
 )
+
+READ049 = declare(
+    "READ049",
+    "waivers-file-invalid",
+    "error",
+    "The package's descgen-waivers.yaml is not a list of waivers (code, subject and reason, each a string).",
+    """descgen generate writes the file from the spec's waivers: and descgen audit reads it for a
+      description inside the package; a file it cannot read as waivers would waive nothing, or the wrong
+      findings. Regenerate the package (descgen generate), fix the file, or audit with --no-waivers.""",
+)

@@ -522,6 +522,9 @@ class MoveItSettings:
     where: Where = NOWHERE
 
 
+WAIVERS_FILE = "descgen-waivers.yaml"  # a generated package's waivers, at its root (audit reads it)
+
+
 @record
 class Waiver:
     """A finding the team accepts for now (spec ``waivers:``): its code and subject exactly as

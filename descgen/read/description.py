@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from descgen.core.findings import Finding, InputError, Where
-from descgen.core.model import MeshState, Robot, Ros2Control
+from descgen.core.model import MeshState, Robot, Ros2Control, Waiver
 from descgen.infra.safeio import check_file, read_bounded, read_head
 from descgen.meshes import paths as mesh_paths
 
@@ -31,6 +31,7 @@ class Options:
     trust_xacro: bool = False  # expand with xacro's own evaluator (runs the file's Python)
     moveit_config: Path | None = None  # a MoveIt config package (MOVEIT rules; descgen/read/moveit_package.py)
     launch_args: Mapping[str, str] = field(default_factory=dict)  # $(var NAME) in the controllers YAML
+    package_waivers: bool = True  # the waivers a generated package carries (descgen/read/package_waivers.py)
 
 
 def kind_of(path: Path) -> str:
@@ -154,20 +155,36 @@ def audit(path: Path, options: Options = Options()) -> list[Finding]:
     from descgen.audit.registry import run
 
     kept = _cache_inputs(path, options)
-    if kept is not None:
-        hit = findings_cache.get(kept)
-        if hit is not None:
-            return hit
-    robot, found = load_description(path, options, kept.data if kept is not None else None)
-    found += run(robot)
-    if robot.waivers:  # a spec's: its rules' findings waived as validate and generate waive them
-        from descgen.audit.registry import RULES
-        from descgen.audit.waivers import applied
+    hit = findings_cache.get(kept) if kept is not None else None
+    if hit is not None:
+        found = hit
+    else:
+        robot, found = load_description(path, options, kept.data if kept is not None else None)
+        found += run(robot)
+        if robot.waivers:  # a spec's: its rules' findings waived as validate and generate waive them
+            from descgen.audit.waivers import applied
 
-        found = applied(found, tuple(w for w in robot.waivers if w.code in RULES), lambda code: True)
-    if kept is not None:
-        findings_cache.put(kept, robot, found)
+            found = applied(found, _rule_waivers(robot.waivers), lambda code: True)
+        if kept is not None:
+            findings_cache.put(kept, robot, found)
+    if options.package_waivers and kind_of(path) != "spec":
+        # the file generate wrote beside the description (the spec's waivers): the audit of the
+        # generated files gives check's verdict. Not cached with the findings: it may change alone
+        from descgen.audit.waivers import waive
+        from descgen.read.package_waivers import waivers_for
+
+        waivers = waivers_for(path)
+        if waivers:  # the rules are imported only to apply some (a cache hit imports none)
+            found = waive(found, _rule_waivers(waivers))
     return found
+
+
+def _rule_waivers(waivers: Sequence[Waiver]) -> tuple[Waiver, ...]:
+    """Only a rule's finding can be waived: a proof or an input error is fixed, not waived."""
+    from descgen.audit.registry import RULES, load
+
+    load()
+    return tuple(w for w in waivers if w.code in RULES)
 
 
 def audit_paths(

@@ -16,7 +16,7 @@ from jinja2.sandbox import ImmutableSandboxedEnvironment
 from descgen.codes.generate import GEN061, GEN065
 from descgen.core.cache_dir import cache_folder
 from descgen.core.findings import InputError, Where
-from descgen.core.model import Robot
+from descgen.core.model import WAIVERS_FILE, Robot
 from descgen.infra import keys
 from descgen.infra.evidence_hash import sha256
 from descgen.infra.safeio import MIB, Codes, read_in_folder
@@ -162,6 +162,8 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append(("evidence/collision_matrix.md", "collision_matrix.md.j2", False))
         files.append(("evidence/sweep.md", "sweep.md.j2", False))  # descgen/prove/sweep.py
     files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
+    if robot.waivers:  # read by descgen audit of the package's files (descgen/read/package_waivers.py)
+        files.append((WAIVERS_FILE, "descgen-waivers.yaml.j2", False))
     return files
 
 

@@ -255,6 +255,7 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         **_frames(robot, xacro),
         "view_distance": num(max(2.0, 4 * extent)),
         "view_focal_z": num(0.5),
+        "waivers": robot.waivers,
         "package": {
             "name": package_name(robot),
             "version": robot.package.version,
