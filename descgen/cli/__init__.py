@@ -725,12 +725,16 @@ def parser() -> argparse.ArgumentParser:
         type=types.Duration("--seconds", _simulate_bounds),
         help="simulated time of the gravity run, e.g. '2 s' (a bare number is seconds; at most 10 s)",
     )
-    si.add_argument("--pose", help="known pose or SRDF group state to hold (default: every joint at zero)")
+    si.add_argument(
+        "--pose",
+        help="known pose or SRDF group state to hold (default: the SRDF's first state, every other joint at zero "
+        "clamped into its limits)",
+    )
     si.add_argument(
         "--base",
         choices=("fixed", "floor"),
         help="fixed to the world, or free on a ground plane (default: floor for a robot whose SRDF virtual "
-        "joint is planar or floating or whose root link is base_footprint)",
+        "joint is planar or floating, whose root link is base_footprint, or that has a drive controller)",
     )
     description_options(si)
     si.add_argument("--format", choices=("text", "json"), default="text")
@@ -740,7 +744,8 @@ def parser() -> argparse.ArgumentParser:
     sw.add_argument("path", help="spec, URDF or Xacro")
     sw.add_argument(
         "--state",
-        help="group state or known pose the other joints hold (default: the collision matrix's state, else zero)",
+        help="group state or known pose the other joints hold (default: the collision matrix's state, else the "
+        "SRDF's first state; every other joint at zero clamped into its limits)",
     )
     sw.add_argument(
         "--steps", type=types.sweep_steps, default=36, help="steps per joint, both limits included (default 36)"

@@ -19,7 +19,8 @@ from descgen.commands.simulate import gravity
 from descgen.commands.simulate.compile import compile_robot, silent_changes
 from descgen.commands.simulate.mujoco_urdf import emit
 from descgen.core.findings import Finding, InputError, Where
-from descgen.core.model import MULTI_DOF, WITH_LIMITS, Robot
+from descgen.core.model import MULTI_DOF, Robot
+from descgen.physics import start_state
 from descgen.physics.mimic import resolve
 
 BASES = ("fixed", "floor")
@@ -39,7 +40,7 @@ _NV = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 
 @dataclass(frozen=True)
 class Settings:
     seconds: float = DEFAULT_SECONDS
-    pose: str | None = None  # None: every joint at zero (clamped into its limits)
+    pose: str | None = None  # None: the SRDF's first state, others at zero clamped into their limits
     base: str | None = None  # None: floor for a mobile robot, else fixed (see default_base)
     gear: float = 1.0  # planted faults only
     damping: float | None = None  # planted faults only: the servos' kv instead of the default
@@ -70,22 +71,24 @@ def require_mujoco() -> None:
 
 
 def default_base(robot: Robot) -> str:
-    """floor for a mobile robot (an SRDF virtual joint that is planar or floating, or a root
-    link named base_footprint), else fixed. A root named world is fixed by definition."""
+    """floor for a mobile robot (an SRDF virtual joint that is planar or floating, a root link
+    named base_footprint, or a drive controller: a wheeled base held in the air shows nothing
+    of how it stands), else fixed. A root named world is fixed by definition."""
     root = robot.root()
     if root is None or root == "world":
         return "fixed"
     virtual = robot.semantic.virtual_joints if robot.semantic else ()
     if any(v.type in MULTI_DOF and v.child_link == root for v in virtual) or root == "base_footprint":
         return "floor"
-    return "fixed"
+    return "floor" if start_state.wheeled(robot) else "fixed"
 
 
 def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
     """Joint values of the named pose (a known pose, else an SRDF group state), mimic joints
-    set from their leaders; without a name every joint at zero, clamped into its limits."""
+    set from their leaders; without a name the SRDF's first state, every other joint at zero
+    clamped into its limits (descgen/physics/start_state.py)."""
     if name is None:
-        values = {j.name: _clamped_zero(j) for j in robot.joints if j.type in WITH_LIMITS}
+        values = start_state.default_state(robot)[1]
     elif (kp := next((p for p in robot.known_poses if p.name == name), None)) is not None:
         values = dict(kp.joints)
     elif robot.semantic and (st := next((s for s in robot.semantic.states if s.name == name), None)) is not None:
@@ -105,13 +108,6 @@ def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
             ]
         )
     return resolve(robot, values)
-
-
-def _clamped_zero(j: Any) -> float:
-    lm = j.limit
-    if lm is None or lm.lower is None or lm.upper is None or lm.lower > lm.upper:
-        return 0.0
-    return float(min(max(0.0, lm.lower), lm.upper))
 
 
 def too_large(robot: Robot, seconds: float, free: bool) -> str:
@@ -190,7 +186,8 @@ def simulate(robot: Robot, settings: Settings) -> Outcome:
             gravity.add_floor(spec, root)
 
     compiled = compile_robot(robot, emit, customise)
-    report: dict[str, Any] = {"base": base, "pose": settings.pose or "zero", "seconds": settings.seconds}
+    held_at = settings.pose or start_state.default_state(robot)[0] or "zero, clamped into the limits"
+    report: dict[str, Any] = {"base": base, "pose": held_at, "seconds": settings.seconds}
     if compiled.spec is None:
         return Outcome(compiled.findings, report | {"compiled": False})
     found = [*compiled.findings, *silent_changes(robot, compiled.model)]

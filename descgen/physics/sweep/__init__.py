@@ -25,7 +25,7 @@ from descgen.core.findings import Finding, InputError, Where
 from descgen.core.model import NOWHERE, Robot
 from descgen.core.record import record
 from descgen.infra import keys
-from descgen.physics import collision, derive
+from descgen.physics import collision, derive, start_state
 from descgen.physics.sweep.contacts import Run, available, runs, unresolved_meshes
 from descgen.physics.sweep.motion import (
     JointMotion,
@@ -93,7 +93,9 @@ def finding(code: str, message: str, hint: str, subject: str = "", where: Where 
 
 def state_values(robot: Robot, name: str | None) -> tuple[str, dict[str, float]]:
     """The state's name and joint values: ``name`` (a group state, else a known pose), else
-    the state the collision matrix used, else every joint at zero ("")."""
+    the state the collision matrix used, else the SRDF's first state, else "" (no state); every
+    joint the state does not name at zero clamped into its limits (descgen/physics/start_state.py:
+    zero is outside many real joints' limits, and a sweep from there finds collisions no robot has)."""
     sem = robot.semantic
     if name is None:
         if sem is not None and sem.matrix is not None:
@@ -101,14 +103,15 @@ def state_values(robot: Robot, name: str | None) -> tuple[str, dict[str, float]]
         elif sem is not None and sem.collision_matrix is not None:
             name = sem.collision_matrix.default_state
         if name is None:
-            return "", {}
+            return start_state.default_state(robot)
+    base = start_state.inside_limits(robot)
     states = sem.states if sem else ()
     st = next((s for s in states if s.name == name), None)
     if st is not None:
-        return name, dict(st.values)
+        return name, {**base, **dict(st.values)}
     kp = next((p for p in robot.known_poses if p.name == name), None)
     if kp is not None:
-        return name, dict(kp.joints)
+        return name, {**base, **dict(kp.joints)}
     there = ", ".join(dict.fromkeys([s.name for s in states] + [p.name for p in robot.known_poses]))
     raise InputError(
         [
@@ -268,7 +271,7 @@ def findings(sw: Sweep) -> list[Finding]:
     """What the sweep found, as findings (the report says the rest)."""
     out: list[Finding] = []
     robot = sw.robot
-    at = f" (others at state {sw.state})" if sw.state else " (others at zero)"
+    at = f" (others at state {sw.state})" if sw.state else " (others at zero, clamped into their limits)"
     if sw.too_large:
         return [
             finding(
@@ -401,7 +404,7 @@ def as_dict(sw: Sweep) -> dict[str, Any]:
 
 def text(sw: Sweep) -> str:
     """The sweep for a terminal: per joint its direction, what moves and what collides."""
-    state = f"state {sw.state}" if sw.state else "every joint at zero"
+    state = f"state {sw.state}" if sw.state else "every joint at zero, clamped into its limits"
     lines = [
         f"{sw.robot.name}: each joint through its range, the others at {state} ({sw.steps} steps; "
         f"padding {sw.padding * 1000:g} mm; {sw.disabled} pairs disabled by {sw.disabled_by})"

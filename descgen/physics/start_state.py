@@ -1,0 +1,53 @@
+"""The state a command starts a robot in when none is named (``sweep``, ``simulate``): inside
+every joint's limits. "Every joint at zero" is outside the limits of many real arms (a wrist
+whose range is 10 to 350 degrees, a gripper that opens from 5 mm), and a sweep or a simulation
+started there reports collisions and forces no real robot can have.
+
+The SRDF's first group state is taken (the Setup Assistant's "home" or "ready", what a MoveIt
+demo starts at); every joint it does not name is at zero clamped into its limits.
+"""
+
+from __future__ import annotations
+
+from descgen.core.model import WITH_LIMITS, Joint, Robot
+
+WHEELED_BASE_CONTROLLERS = frozenset(
+    {  # controllers of a wheeled base: the robot drives on a floor (ros2_controllers jazzy plugin names)
+        "diff_drive_controller/DiffDriveController",
+        "tricycle_controller/TricycleController",
+        "mecanum_drive_controller/MecanumDriveController",
+        "omni_wheel_drive_controller/OmniWheelDriveController",
+        "ackermann_steering_controller/AckermannSteeringController",
+        "bicycle_steering_controller/BicycleSteeringController",
+        "tricycle_steering_controller/TricycleSteeringController",
+    }
+)
+
+
+def clamped_zero(j: Joint) -> float:
+    """Zero, or the limit nearest to it when zero is outside [lower, upper]."""
+    lm = j.limit
+    if j.type not in WITH_LIMITS or lm is None or lm.lower is None or lm.upper is None or lm.lower > lm.upper:
+        return 0.0
+    return float(min(max(0.0, lm.lower), lm.upper))
+
+
+def inside_limits(robot: Robot) -> dict[str, float]:
+    """Every joint with limits at zero clamped into them."""
+    return {j.name: clamped_zero(j) for j in robot.joints if j.type in WITH_LIMITS}
+
+
+def default_state(robot: Robot) -> tuple[str, dict[str, float]]:
+    """(the SRDF's first group state, or "" without one; joint values): that state's values over
+    :func:`inside_limits`."""
+    values = inside_limits(robot)
+    states = robot.semantic.states if robot.semantic is not None else ()
+    if not states:
+        return "", values
+    return states[0].name, {**values, **dict(states[0].values)}
+
+
+def wheeled(robot: Robot) -> bool:
+    """A wheeled base: its ros2_control runs a drive controller."""
+    rc = robot.ros2_control
+    return rc is not None and any(c.type in WHEELED_BASE_CONTROLLERS for c in rc.controllers)
