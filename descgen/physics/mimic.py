@@ -185,3 +185,12 @@ def formula(robot: Robot, rel: Relation) -> str:
     if rel.direct != rel.leader:
         text += f" (through {rel.direct})"
     return text
+
+
+def unactuated(robot: Robot) -> set[str]:
+    """Joints no actuator of their own drives: the SRDF's passive joints (a spring, a free
+    caster, an underactuated finger) and mimic followers (robot_state_publisher computes them
+    from their leader; MoveIt treats them as passive). A zero effort or velocity limit is what
+    such a joint has, and its load rests on a spring, a linkage or its leader's motor."""
+    declared = set(robot.semantic.passive_joints) if robot.semantic is not None else set()
+    return declared | {j.name for j in robot.joints if j.mimic is not None}

@@ -9,6 +9,7 @@ from descgen.audit.registry import at, rule
 from descgen.core.findings import Finding
 from descgen.core.model import ONE_DOF, WITH_AXIS, WITH_LIMITS, Joint, Robot
 from descgen.core.naming import mirror_name
+from descgen.physics import mimic
 from descgen.physics.bodies import static_load, subtree_loads
 from descgen.physics.rigid import dot, norm, rotate
 from descgen.physics.zero_pose import at_zero
@@ -102,15 +103,19 @@ def limits_out_of_order(robot: Robot) -> Iterator[Finding]:
 @rule("JOINT005", "non-positive-effort-or-velocity", "error")
 def non_positive_effort_or_velocity(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Finds a limit whose effort or velocity is zero or negative.
+    Finds a limit whose effort or velocity is zero or negative; zero is what a passive joint
+    (the SRDF's ``passive_joint``, a mimic follower) has, so it is not reported there.
     ## Why is this bad?
     A zero limit lets nothing move; ros2_control takes abs() of a negative one, hiding the typo.
     """
+    unpowered = mimic.unactuated(robot)
     for j in robot.joints:
         lm = j.limit
         if lm is None or j.type == "fixed":
             continue
         for field in ("effort", "velocity"):
+            if getattr(lm, field) == 0 and j.name in unpowered:
+                continue
             v = getattr(lm, field)
             if v is None:
                 yield at(
@@ -202,8 +207,11 @@ def effort_below_gravity_load(robot: Robot) -> Iterator[Finding]:
     if not poses:
         return
     loads = subtree_loads(robot, poses)
+    unpowered = mimic.unactuated(robot)
     for j in robot.joints:
         if j.type not in WITH_LIMITS or j.limit is None or j.limit.effort is None or j.child is None:
+            continue
+        if j.name in unpowered:
             continue
         if j.limit.effort == 0:
             continue  # JOINT005 reports a zero effort limit
