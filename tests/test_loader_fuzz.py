@@ -41,15 +41,17 @@ SLOW = settings(FAST, max_examples=80, phases=[Phase.explicit, Phase.reuse, Phas
 
 
 def check(text: str, max_line: int | None = None) -> None:
-    """The property: a Loaded, or an InputError of well-formed located error findings."""
+    """The property: a Loaded, or an InputError of well-formed located findings, at least one
+    of them an error that blocks (the refusal carries the spec's warnings too)."""
     try:
         result = load_spec_text(text, FILE)
     except InputError as exc:
         assert exc.findings, "InputError without findings"
+        assert any(f.blocks for f in exc.findings), exc.findings
         for f in exc.findings:
             assert f.message and f.message.strip(), f
             assert f.code and re.fullmatch(r"[A-Z]+\d{3}", f.code), f
-            assert f.severity == "error", f
+            assert f.severity in ("error", "warning", "info"), f
             assert f.where.line >= 0, f
             assert f.where.col >= 0, f
             if max_line is not None:

@@ -215,3 +215,23 @@ def test_bare_number_hint_in_validate(
     assert main(["validate", str(spec)]) == 2
     err = capsys.readouterr().err
     assert "error[UNIT001]" in err and f'e.g. "{expected}"' in err, err
+
+
+SEVERITY = re.compile(r"^.+?:\d+:\d+: (?P<severity>error|warning|info)\[(?P<code>[A-Z]+\d{3})\]: ", re.MULTILINE)
+UNUSED = "waivers:\n  - {code: INER004, subject: 'link:nowhere', reason: left over}\n"
+
+
+@pytest.mark.parametrize("error", [BAD_GROUP, CASTER_MASS], ids=["rule error", "unit error"])
+def test_a_refused_spec_still_shows_its_warnings_and_infos(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], error: tuple[str, str]
+) -> None:
+    """One error used to hide every warning (the refusal carried errors only), and the
+    check-stage rules did not run at all: a user fixed the error to meet the next surprise."""
+    spec = tmp_path / "robot.yaml"
+    spec.write_text(_planted(error) + UNUSED)
+    code = main(["validate", str(spec)])
+    shown = {(m["severity"], m["code"]) for m in SEVERITY.finditer(capsys.readouterr().err)}
+    assert code == 2
+    assert ("error", "SRDF002" if error is BAD_GROUP else "UNIT003") in shown
+    assert ("warning", "SPEC130") in shown  # the waiver that matches nothing
+    assert ("info", "GEOM041") in shown  # a check-stage rule's info: the model was built, so it ran

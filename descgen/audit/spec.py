@@ -53,15 +53,14 @@ def load_spec_text(text: str, file: str = "<string>", rules: bool = True) -> Loa
     return read_spec_text(text, file, INPUT_RULES if rules else None)
 
 
-def validate_spec(
-    path: str | Path, display: str | None = None, package_paths: Sequence[Path] = ()
-) -> tuple[Loaded, list[Finding]]:
-    """``descgen validate``: the spec loaded (:func:`load_spec`, InputError when it cannot be
-    built or an input-stage rule fails), then the check-stage rules too (a known pose off its
-    forward kinematics, POSE010) with the spec's waivers of them, so "valid" means generate's
-    rules pass as well. Returns the loaded spec and the check-stage findings."""
-    from descgen.audit.waivers import applied
+def validate_spec(path: str | Path, display: str | None = None, package_paths: Sequence[Path] = ()) -> Loaded:
+    """``descgen validate``: the spec read and built, its model judged by every rule generate
+    judges (the input-stage rules and the check-stage ones: a known pose off its forward
+    kinematics, POSE010), each with the spec's waivers, so "valid" means generate's rules pass
+    as well. Raises :class:`InputError` with every finding (warnings and infos beside the
+    errors) when one blocks; else the findings are the Loaded's."""
+    return read_spec(path, display, _every_rule, package_paths)
 
-    loaded = load_spec(path, display, True, package_paths)
-    later = applied(run(loaded.robot, stage="check"), loaded.robot.waivers, check_stage)
-    return loaded, later
+
+def _every_rule(robot: Robot) -> list[Finding]:
+    return [*_input_rules(robot), *applied(run(robot, stage="check"), robot.waivers, check_stage)]

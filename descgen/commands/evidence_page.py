@@ -225,8 +225,8 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
 def _validation(spec: Path, shown: str, package_paths: tuple[Path, ...]) -> tuple[list[str], Any]:
     from descgen.audit.spec import validate_spec
 
-    loaded, later = validate_spec(spec, display=shown, package_paths=package_paths)
-    found = [*loaded.findings, *later]
+    loaded = validate_spec(spec, display=shown, package_paths=package_paths)
+    found = list(loaded.findings)
     ok = not any(f.blocks for f in found)
     text = report.text(found) + (cli_format.validated(shown, loaded.robot) + "\n" if ok else "")
     lines = ["## 2. Validation", "", f"{_md().mdspan(f'descgen validate {shown}')} prints:", "", *_block(text, "text")]
@@ -353,8 +353,8 @@ def _transcript(
 
     # what `descgen validate SPEC` prints (cli._cmd_validate): the findings on stderr, then the
     # one-line verdict; tests/test_evidence_page.py holds it to the command's real output
-    loaded, later = validate_spec(spec, package_paths=package_paths)
-    validated = report.text([*loaded.findings, *later]) + cli_format.validated(str(spec), loaded.robot) + "\n"
+    loaded = validate_spec(spec, package_paths=package_paths)
+    validated = report.text(loaded.findings) + cli_format.validated(str(spec), loaded.robot) + "\n"
     steps = [
         (f"descgen validate {shown}", validated.replace(str(spec), shown)),
         (f"descgen generate {shown}", f"{shown}: wrote 0 files, {unchanged} unchanged\n"),

@@ -103,7 +103,9 @@ def from_document(doc: Document, rules: Rules | None = None, place: _Place | Non
         findings = [f for f in findings if not inside(f)]
     problems += errors(findings)
     if problems:
-        raise InputError(_ordered(_unique(problems)))
+        # the warnings, infos and waived findings too: a spec refused for one error still shows
+        # everything else its rules found, as a valid one would (issue 29)
+        raise InputError(_ordered(_unique([*problems, *(f for f in findings if not f.blocks)])))
     return Loaded(robot, spec, doc, tuple(f for f in findings if not f.blocks))  # a waived error stays reported
 
 
@@ -162,7 +164,7 @@ def _rules_despite(
         robot, built = _build(doc, spec, ranges, place, stand_ins=True)
         inside = _inside(doc, [*bad, *drop, *_bad_paths(doc, built)])
         judged = [f for f in rules(robot) if not inside(f)]
-        runs.append(errors([*built, *judged]))
+        runs.append([*built, *judged])  # every severity: the warnings of the rest of the spec too
     again = {_key(f) for f in runs[1]}
     return [f for f in runs[0] if _key(f) in again]
 

@@ -657,6 +657,7 @@ def _proved(imported: Imported) -> Outcome:
                 message=f"the imported spec fails validate here (a defect of the description): {f.message}",
             )
             for f in exc.findings
+            if f.blocks  # the refusal carries the spec's warnings too: those are not why it fails
         ]
         return Outcome(imported, invalid)
     return Outcome(imported, [])
