@@ -197,7 +197,13 @@ def _numpy_scene(robot: Robot, kp: KnownPose) -> pose_images.Scene:
         measured = None if base is None else point((base @ np.array([*fm.xyz, 1.0]))[:3])
         markers.append(
             pose_images.Marker(
-                fm.frame, fm.relative_to, None if t is None else point(t[:3, 3]), fm.xyz, links.get(fm.frame), measured
+                fm.frame,
+                fm.relative_to,
+                None if t is None else point(t[:3, 3]),
+                fm.xyz,
+                links.get(fm.frame),
+                measured,
+                fm.tolerance,
             )
         )
     return pose_images.Scene(kp, links, bones, markers)
@@ -214,7 +220,8 @@ def test_the_pose_record_is_the_numpy_scene_s(monkeypatch: pytest.MonkeyPatch) -
                 np.testing.assert_allclose(p, want.links[name], rtol=0, atol=1e-12)
             for a, b in zip(got.markers, want.markers, strict=True):
                 np.testing.assert_allclose(a.measured_in_root or (), b.measured_in_root or (), rtol=0, atol=1e-12)
-                assert a.error_mm == pytest.approx(b.error_mm, abs=1e-9)
+                np.testing.assert_allclose(a.model or (), b.model or (), rtol=0, atol=1e-12)
+                assert a.verdict == b.verdict
         monkeypatch.setattr(pose_images, "scene", _numpy_scene)
         assert pose_images.record(robot) == plain  # the committed record's bytes, so check passes
         monkeypatch.undo()

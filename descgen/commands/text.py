@@ -52,9 +52,11 @@ def _mm(v: Sequence[float] | None) -> str:
 
 
 def poses_table(rows: Sequence[Row]) -> str:
+    from descgen.physics.poses import worst_mm
+
     lines = [f"{'pose':<16} {'frame':<22} {'measured (mm)':<24} {'model (mm)':<24} {'worst':>7} {'tol':>5}  verdict"]
     for r in rows:
-        worst = "n/a" if r.error is None else f"{r.worst * 1000:.2f}"
+        worst = worst_mm(r.error, r.measurement.tolerance)
         lines.append(
             f"{printable(r.pose.name):<16} {printable(r.measurement.frame):<22} "
             f"{_mm(r.measurement.xyz):<24} {_mm(r.model):<24} "

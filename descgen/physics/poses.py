@@ -27,7 +27,7 @@ class Row:
 
     @property
     def worst(self) -> float:
-        return max(abs(e) for e in self.error) if self.error else float("inf")
+        return worst(self.error)
 
     @property
     def distance(self) -> float:
@@ -38,7 +38,46 @@ class Row:
 
     @property
     def ok(self) -> bool:
-        return self.error is not None and self.worst <= self.measurement.tolerance + EPS
+        return passes(self.error, self.measurement.tolerance)
+
+    @property
+    def verdict(self) -> str:
+        return verdict(self.error, self.measurement.tolerance)
+
+
+# One error measure and one tolerance rule for a known pose, wherever it is shown (poses,
+# POSE010, view, the pose images and the evidence page): the largest difference along an axis
+# of the measurement's base frame, the way the tolerance is written ("each coordinate within").
+
+
+def worst(error: Vec3 | None) -> float:
+    """The largest axis difference of ``model - measured`` (metres); inf when not in the model."""
+    return max(abs(e) for e in error) if error else float("inf")
+
+
+def passes(error: Vec3 | None, tolerance: float) -> bool:
+    return error is not None and worst(error) <= tolerance + EPS
+
+
+def verdict(error: Vec3 | None, tolerance: float) -> str:
+    """``0.8 mm, tol 2 mm, pass``: the error to the digits its tolerance can judge."""
+    if error is None:
+        return "not in the model, FAIL"
+    shown = f"{worst_mm(error, tolerance)} mm, tol {tolerance * 1000:g} mm"
+    return f"{shown}, {'pass' if passes(error, tolerance) else 'FAIL'}"
+
+
+def worst_mm(error: Vec3 | None, tolerance: float) -> str:
+    """The largest axis difference in millimetres, to the digits the tolerance judges (one more
+    than its own), and more where a failing value would round onto the tolerance ("2.0" of 2 mm
+    that fails reads "2.04"); "n/a" when the frame is not in the model."""
+    if error is None:
+        return "n/a"
+    value, tol = worst(error) * 1000, tolerance * 1000
+    digits = display.mm_digits(tolerance)
+    while not passes(error, tolerance) and round(value, digits) <= tol and digits < 9:
+        digits += 1
+    return f"{value:.{digits}f}"
 
 
 def evaluate(robot: Robot) -> list[Row]:

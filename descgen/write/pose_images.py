@@ -11,7 +11,6 @@ from the spec, and that every image exists. matplotlib is imported only when dra
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -19,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from descgen.core.findings import Finding, Where
 from descgen.core.model import KnownPose, Robot
 from descgen.infra import keys
+from descgen.physics import poses as known_poses
 from descgen.physics import zero_pose
 from descgen.physics.rigid import ORIGIN, apply
 
@@ -28,7 +28,7 @@ if TYPE_CHECKING:  # numpy only draws (with matplotlib): check rebuilds the reco
 FOLDER = "evidence/poses"
 SIDECAR = f"{FOLDER}/poses.json"
 # Bump when the drawing changes in a way a reviewer should see: the record then reads stale.
-RENDERER_VERSION = "1"
+RENDERER_VERSION = "2"  # 2: the label says the error as poses does, with the tolerance and verdict
 _MAX_SIDECAR_BYTES = 1 << 20  # a record for hundreds of poses is a few kB; more is not ours
 
 
@@ -43,12 +43,13 @@ class Marker:
     measured: tuple[float, float, float]
     model_in_root: tuple[float, float, float] | None
     measured_in_root: tuple[float, float, float] | None
+    tolerance: float  # metres, as the spec states it
 
     @property
-    def error_mm(self) -> float | None:
-        if self.model is None:
-            return None
-        return math.dist(self.model, self.measured) * 1000
+    def verdict(self) -> str:
+        """As poses, POSE010, the viewer and the page say it (descgen/physics/poses.py)."""
+        error = None if self.model is None else tuple(a - b for a, b in zip(self.model, self.measured, strict=True))
+        return known_poses.verdict(error, self.tolerance)  # type: ignore[arg-type]
 
 
 @dataclass(frozen=True)
@@ -88,6 +89,7 @@ def scene(robot: Robot, kp: KnownPose) -> Scene:
                 fm.xyz,
                 links.get(fm.frame),
                 measured_root,
+                fm.tolerance,
             )
         )
     return Scene(kp, links, bones, markers)
@@ -110,6 +112,7 @@ def _inputs(s: Scene) -> dict[str, Any]:
                 "relative_to": m.relative_to,
                 "model_mm": _mm(m.model),
                 "measured_mm": _mm(m.measured),
+                "tolerance_mm": round(m.tolerance * 1000, 6) + 0.0,  # the label shows the verdict
             }
             for m in s.markers
         ],
@@ -162,11 +165,10 @@ def _draw(s: Scene, target: Path) -> None:
     pts = np.array(list(s.links.values()) or [(0.0, 0.0, 0.0)])
     ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], s=8, color="0.35")
     for m in s.markers:
-        err = f"{m.error_mm:.1f} mm" if m.error_mm is not None else "not in the model"
         if m.model_in_root is not None:
             ax.scatter(*m.model_in_root, marker="o", s=40, label=f"{m.frame} model")
         if m.measured_in_root is not None:
-            ax.scatter(*m.measured_in_root, marker="x", s=60, label=f"{m.frame} measured (error {err})")
+            ax.scatter(*m.measured_in_root, marker="x", s=60, label=f"{m.frame} measured ({m.verdict})")
         pts = np.vstack([pts, *(p for p in (m.model_in_root, m.measured_in_root) if p is not None)])
     _equal_axes(ax, pts)
     ax.view_init(elev=20, azim=-60)  # fixed: images of different poses compare at a glance

@@ -21,6 +21,7 @@ from descgen.codes.command import VIEW001
 from descgen.core.findings import Finding, InputError, Severity, Where
 from descgen.core.model import ONE_DOF, Mesh, Robot
 from descgen.physics import kinematics, mimic
+from descgen.physics import poses as known_poses
 
 if TYPE_CHECKING:
     from descgen.meshes.load import Loaded
@@ -44,8 +45,9 @@ class Marker:
     frame: str
     measured: Vec3  # in the root frame
     model: Vec3
-    error_mm: float  # the largest axis difference
+    error_mm: float  # the largest axis difference (descgen/physics/poses.py: worst)
     tolerance_mm: float
+    verdict: str  # "0.8 mm, tol 2 mm, pass": as poses, the page and the pose images say it
 
 
 def sliders(robot: Robot) -> list[Slider]:
@@ -90,15 +92,16 @@ def markers(robot: Robot, pose: str) -> list[Marker]:
         measured = base @ np.array([*fm.xyz, 1.0])
         model = poses[fm.frame][:3, 3]
         rel = np.linalg.inv(base) @ poses[fm.frame]
-        err = max(abs(float(rel[i, 3]) - fm.xyz[i]) for i in range(3))
+        error = (float(rel[0, 3]) - fm.xyz[0], float(rel[1, 3]) - fm.xyz[1], float(rel[2, 3]) - fm.xyz[2])
         out.append(
             Marker(
                 kp.name,
                 fm.frame,
                 (float(measured[0]), float(measured[1]), float(measured[2])),
                 (float(model[0]), float(model[1]), float(model[2])),
-                err * 1000.0,
+                known_poses.worst(error) * 1000.0,
                 fm.tolerance * 1000.0,
+                known_poses.verdict(error, fm.tolerance),
             )
         )
     return out

@@ -153,10 +153,7 @@ def _draw_markers(v: Viewer) -> None:
         base = f"/markers/{m.frame}"
         v.server.scene.add_icosphere(f"{base}/measured", radius=0.012, color=MEASURED, position=m.measured)
         v.server.scene.add_icosphere(f"{base}/model", radius=0.009, color=MODEL, position=m.model)
-        verdict = "ok" if m.error_mm <= m.tolerance_mm else "OFF"
-        v.server.scene.add_label(
-            f"{base}/error", f"{m.frame}: {m.error_mm:.1f} mm (tol {m.tolerance_mm:g}) {verdict}", position=m.measured
-        )
+        v.server.scene.add_label(f"{base}/error", f"{m.frame}: {m.verdict}", position=m.measured)
         v.marker_nodes[base] = (np.array(m.model), np.array(m.measured))
 
 
