@@ -68,6 +68,17 @@ def test_the_page_has_nine_sections_each_with_a_verdict_and_links_that_resolve(b
     assert f"$ descgen validate {SPEC}\n{printed}\n$ descgen generate" in page, printed
 
 
+
+def test_the_starter_transcript_says_what_generate_prints(project: Path) -> None:
+    """The page said "wrote 0 files, 15 unchanged" (the description package alone) where
+    generate prints 33 (the MoveIt package too): the line must be the command's own."""
+    ran = cli("generate", SPEC, cwd=project)
+    assert ran.returncode == 0
+    (line,) = [x for x in ran.stdout.splitlines() if x.startswith(f"{SPEC}: wrote")]
+    assert line.startswith(f"{SPEC}: wrote 0 files, ")
+    assert f"$ descgen generate {SPEC}\n{line}\n$ descgen check" in page_of(project)
+
+
 def test_the_plots_and_mermaid_are_embedded(built: Path) -> None:
     page = page_of(built)
     assert "```mermaid\ngraph TD" in page
@@ -199,3 +210,34 @@ def test_a_robot_without_a_camera_gets_its_page(tmp_path: Path) -> None:
     assert all(v == ["PASS"] for n, v in verdicts.items() if n != "5"), verdicts
     assert "not plantable" in sections["9"]  # the story's camera fault has no camera to move
     assert cli("check", tmp_path / SPEC).returncode == 0
+
+
+def _tables(markdown: str) -> list[list[list[str]]]:
+    """Every GFM table as markdown-it-py's table rule reads it: rows of cell texts."""
+    import markdown_it
+
+    tokens = markdown_it.MarkdownIt("commonmark").enable("table").parse(markdown)
+    tables: list[list[list[str]]] = []
+    inside = False
+    for t in tokens:
+        if t.type in ("table_open", "table_close"):
+            inside = t.type == "table_open"
+            tables += [[]] if inside else []
+        elif inside and t.type == "tr_open":
+            tables[-1].append([])
+        elif inside and t.type == "inline":
+            tables[-1][-1].append("".join(c.content for c in t.children or ()))
+    return tables
+
+
+def test_every_table_of_the_committed_page_keeps_its_cells() -> None:
+    """A `|` in a cell (the proof 'xacro hardware:=gazebo|real') split the first table's row
+    on GitHub: GFM drops the cells past the header's, so the proof's name was cut and its result
+    lost. Every row keeps its header's cells, and the proof reads whole."""
+    page = (ROOT / "generated" / "warehouse_arm_description" / "evidence" / "README.md").read_text()
+    tables = _tables(page)
+    assert len(tables) >= 2
+    for rows in tables:
+        assert len({len(r) for r in rows}) == 1, rows
+    proofs = {row[0]: row[1] for row in tables[0][1:]}
+    assert proofs["xacro hardware:=gazebo|real expands to the model's variants"] == "passed"

@@ -172,7 +172,7 @@ def _waivers(robot: Any) -> list[str]:
         "| code | subject | reason |",
         "|---|---|---|",
     ]
-    lines += [f"| {md.mdspan(w.code)} | {md.mdspan(w.subject)} | {md.mdtext(w.reason)} |" for w in robot.waivers]
+    lines += [f"| {md.mdcode(w.code)} | {md.mdcode(w.subject)} | {md.mdcell(w.reason)} |" for w in robot.waivers]
     lines += [
         "",
         f"**Verdict: WAIVED**: {len(robot.waivers)} waiver(s); fix each finding and remove its waiver",
@@ -217,7 +217,7 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
         notes = sorted({f.code for f in found if f.severity == "info"})
         ok = ok and not bad
         result = "failed: " + ", ".join(bad) if bad else "passed" + (f" (notes: {', '.join(notes)})" if notes else "")
-        lines.append(f"| {name} | {result} |")
+        lines.append(f"| {_md().mdcell(name)} | {_md().mdcell(result)} |")  # "gazebo|real" splits no cell
     lines += ["", _verdict(ok, "every round trip (xacro, yourdfpy, check_urdf, SRDF, ros2_control) agrees"), ""]
     return lines
 
@@ -409,7 +409,7 @@ def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
     ]
     for c in caught:
         by = _md().mdtext(f"{c.by.code}: {report.printable(c.by.message)}") if c.by else "**MISSED**"
-        lines.append(f"| {c.fault.story} | {'yes' if c.planted else 'not plantable'} | {by} |")
+        lines.append(f"| {_md().mdcell(c.fault.story)} | {'yes' if c.planted else 'not plantable'} | {by} |")
     results = plant_all(robot)
     applicable = [r for r in results if r.applicable]
     lines += ["", "`descgen faults SPEC`, the whole catalogue:", "", *_block(cli_format.faults_text(results), "text")]

@@ -47,6 +47,10 @@ class Plan:
         every: dict[str, str | bytes] = {**self.files, **{rel: data for rel, (_, data) in self.meshes.items()}}
         return dict(sorted(every.items()))
 
+    def file_count(self) -> int:
+        """How many files generate writes or leaves unchanged in both packages, as it prints them."""
+        return len(self.content()) + len(self.moveit_files)
+
 
 def spec_display(spec: Path, out_root: Path) -> str:
     """How the header names the spec: relative to the project (the folder holding the
@@ -343,7 +347,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
     shown = spec_display(spec, root)
     lines = page.check_lines(shown, outcome.findings, outcome.diff)
     meshes = {rel: data for rel, (_, data) in p.meshes.items()}
-    key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, len(p.content()))
+    key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, p.file_count())
     if not write_page and page.current(p.package_dir, key):  # built from these very inputs: not again
         return pose_images.stale(p.package_dir, p.robot)
     fresh = page.build(
@@ -353,7 +357,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
         p.robot,
         p.package_dir,
         lines,
-        len(p.content()),
+        p.file_count(),
         write_page,
         p.proofs,
         key,
