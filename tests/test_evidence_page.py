@@ -68,7 +68,6 @@ def test_the_page_has_nine_sections_each_with_a_verdict_and_links_that_resolve(b
     assert f"$ descgen validate {SPEC}\n{printed}\n$ descgen generate" in page, printed
 
 
-
 def test_the_starter_transcript_says_what_generate_prints(project: Path) -> None:
     """The page said "wrote 0 files, 15 unchanged" (the description package alone) where
     generate prints 33 (the MoveIt package too): the line must be the command's own."""

@@ -274,7 +274,8 @@ def test_the_mesh_cache_folder_is_named_by_a_key() -> None:
     from descgen.meshes import cache as mesh_cache
 
     name = mesh_cache._folder_name()
-    expected = keys.key("mesh facts", mesh_cache.SCHEMA, None, ("trimesh", "pycollada", "numpy"), keys.NOTHING)
+    libraries = ("trimesh", "pycollada", "numpy", "lxml")  # what measures a mesh: meshes/bounds.py and trimesh
+    expected = keys.key("mesh facts", mesh_cache.SCHEMA, None, libraries, keys.NOTHING)
     assert name == "meshes-" + expected[:16]
 
 

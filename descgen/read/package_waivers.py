@@ -17,7 +17,6 @@ from pathlib import Path
 from descgen.codes.read import READ049
 from descgen.core.findings import InputError, Where
 from descgen.core.model import WAIVERS_FILE, Waiver
-from descgen.infra import yamlsource
 
 _LEVELS = 4  # urdf/robot.urdf, urdf/sub/robot.urdf.xacro ... : a package's files sit a few folders down
 _FIELDS = ("code", "subject", "reason")
@@ -43,6 +42,8 @@ def waivers_for(description: Path) -> tuple[Waiver, ...]:
     path = package / WAIVERS_FILE
     if not path.exists() and not path.is_symlink():
         return ()
+    from descgen.infra import yamlsource  # only for a package that has the file: a URDF audit needs no YAML
+
     doc = yamlsource.load(path, str(path), what="waivers file")
     entries = doc.data.get("waivers") if isinstance(doc.data, dict) else None
     if not isinstance(doc.data, dict) or set(doc.data) != {"waivers"} or not isinstance(entries, list):
