@@ -470,6 +470,8 @@ ARGPARSE = "argparse"  # argparse's own usage error (a bad choice, a flag given 
 # spec is read (or not at all) shows up as a different error.
 BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
     ("validate", "spec", ["validate", NOSPEC], "error[YAML002]"),
+    ("fix", "spec", ["fix", NOSPEC], "error[YAML002]"),
+    ("fix", "--dry-run", ["fix", SPEC, "--dry-run=1"], "argument --dry-run: ignored explicit argument"),
     ("validate", "--format", ["validate", NOSPEC, "--format", "xml"], "argument --format: invalid choice: 'xml'"),
     ("generate", "spec", ["generate", NOSPEC, "--out", "{tmp}/o"], "error[YAML002]"),
     ("generate", "--out", ["generate", NOSPEC, "--out", ""], "argument --out: an empty path names nothing"),
@@ -544,6 +546,7 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
         "argument --no-waivers: ignored explicit argument 'yes'",
     ),
     ("import", "--variant", ["import", NOSPEC, "--variant", "sim:use_gazebo:=true"], "error[IMP027]: --variant"),
+    ("import", "--fix", ["import", NOSPEC, "--fix=yes"], "argument --fix: ignored explicit argument 'yes'"),
     ("faults", "path", ["faults", "{tmp}/none.urdf"], "error[READ001]"),
     ("faults", "--srdf", ["faults", SPEC, "--srdf", "{tmp}"], "error[READ040]"),
     ("faults", "--controllers", ["faults", SPEC, "--controllers", ""], "argument --controllers: an empty path"),

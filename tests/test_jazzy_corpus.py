@@ -441,3 +441,39 @@ def test_the_imported_spec_validates_against_the_json_schema(case: Case) -> None
         f"{list(e.absolute_path)}: {e.message[:200]}" for e in jsonschema.Draft202012Validator(schema).iter_errors(data)
     ]
     assert errors == []
+
+
+@pytest.mark.parametrize("case", _params("fix", only=lambda c: "CTRL045" in c.reviewed))
+def test_import_fix_renames_the_plugin_jazzy_renamed_and_nothing_else(case: Case, tmp_path: Path) -> None:
+    """fake_components/GenericSystem, the packages' use_fake_hardware plugin, and its
+    fake_sensor_commands are what a fix may touch: import --fix writes mock_components/GenericSystem,
+    no CTRL045 waiver, and the robot generate writes is the same one (its URDF differs from the
+    unfixed import's only in those two names)."""
+    from descgen.commands.importer.run import ImportOptions, import_description
+
+    options = ImportOptions(_options(case), spec_name=str(tmp_path / "r.yaml"), fix=True)
+    fixed = import_description(CORPUS / case.xacro, options)
+    assert [f.code for f in fixed.imported.report if f.code == "IMP039"] == ["IMP039"]
+    spec = tmp_path / "r.yaml"
+    spec.write_text(fixed.imported.spec_text)
+    assert "fake_components/GenericSystem" not in fixed.imported.spec_text.split("waivers:")[0]
+    waivers = yaml.safe_load(spec.read_text()).get("waivers", [])
+    assert "CTRL045" not in {w["code"] for w in waivers}
+    ran = cli("validate", spec, "--package-path", CORPUS, cwd=tmp_path)
+    assert ran.returncode == 0 and "CTRL045" not in ran.stderr, ran.stderr[-2000:]
+    plain_spec = spec_of(_import(case))
+    out_a, out_b = tmp_path / "a", tmp_path / "b"
+    assert cli("generate", spec, "--out", out_a, "--package-path", CORPUS, cwd=tmp_path).returncode == 0
+    assert cli("generate", plain_spec, "--out", out_b, "--package-path", CORPUS, cwd=tmp_path).returncode == 0
+    (a,) = out_a.glob("*_description/urdf/*.urdf")
+    (b,) = out_b.glob("*_description/urdf/*.urdf")
+    renames = {"fake_components/GenericSystem": "mock_components/GenericSystem"}
+    renames |= {'"fake_sensor_commands"': '"mock_sensor_commands"', '"fake_gpio_commands"': '"mock_gpio_commands"'}
+
+    def body(urdf: Path, renamed: bool = False) -> list[str]:
+        lines = [x for x in urdf.read_text().splitlines() if "spec-sha256" not in x and "generated from" not in x]
+        for old, new in renames.items() if renamed else ():
+            lines = [x.replace(old, new) for x in lines]
+        return lines
+
+    assert body(a) == body(b, renamed=True)

@@ -276,7 +276,12 @@ def _cmd_import(args: argparse.Namespace) -> int:
 
     variants = tuple(Variant(n, a) for n, a in args.variant or [])
     opts = ImportOptions(
-        _description_options(args), args.units, str(out) if out else "imported.yaml", variants, not args.no_waivers
+        _description_options(args),
+        args.units,
+        str(out) if out else "imported.yaml",
+        variants,
+        not args.no_waivers,
+        args.fix,
     )
     result = import_description(Path(args.path), opts)
     imp = result.imported
@@ -410,6 +415,28 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         sys.stdout.write(text(result))
         sys.stderr.write(report.text(found))
     return exit_code(found, strict=args.strict)
+
+
+def _cmd_fix(args: argparse.Namespace) -> int:
+    """The safe fixes of each spec (descgen/commands/fix.py), as a diff on stdout; written
+    unless --dry-run."""
+    from descgen.commands.fix import fix_file
+    from descgen.spec.files import expand_specs
+
+    for spec in expand_specs(args.spec):
+        fixed = fix_file(Path(spec), write=not args.dry_run)
+        sys.stdout.write(fixed.diff(str(spec)))
+        for x in fixed.fixes:
+            print(f"{spec}: {x.code} {x.subject}: {x.what}", file=sys.stderr)
+        done = "would be fixed (--dry-run: nothing written)" if args.dry_run else "fixed"
+        print(
+            f"{spec}: {len(fixed.fixes)} finding(s) {done}; what is left changes the robot: "
+            "descgen validate shows it, each hint with the value that would pass"
+            if fixed.fixes
+            else f"{spec}: nothing to fix safely",
+            file=sys.stderr,
+        )
+    return EXIT_OK
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -626,6 +653,11 @@ def parser() -> argparse.ArgumentParser:
         help="do not write a waiver for each defect of the description (then validate fails at them)",
     )
     im.add_argument(
+        "--fix",
+        action="store_true",
+        help="apply the fixes that cannot change the robot (as descgen fix does) to the imported spec",
+    )
+    im.add_argument(
         "--variant",
         action="append",
         type=types.variant,
@@ -770,6 +802,15 @@ def parser() -> argparse.ArgumentParser:
     k.add_argument("--format", choices=("text", "json"), default="text")
     package_path(k)
     k.set_defaults(fn=_cmd_poses)
+
+    fx = sub.add_parser(
+        "fix",
+        help="apply the fixes that cannot change the robot (Jazzy's one-to-one renames, parameters Jazzy "
+        "removed) to specs, and print them as a diff",
+    )
+    fx.add_argument("spec", nargs="+")
+    fx.add_argument("--dry-run", action="store_true", help="print the diff, write nothing")
+    fx.set_defaults(fn=_cmd_fix)
 
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")
     s.set_defaults(fn=_cmd_schema)

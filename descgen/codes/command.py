@@ -37,6 +37,16 @@ BASE003 = declare(
     """Nothing is written; the audit's findings are printed as usual. Name a writable file.""",
 )
 
+FIX001 = declare(
+    "FIX001",
+    "fix-not-safe",
+    "error",
+    "descgen fix would change more than the findings it fixes (a link or joint, another finding), or the "
+    "fixed spec does not read: nothing is written.",
+    """A safe fix only renames what Jazzy renamed one to one or drops what Jazzy does not read; the spec is
+      read again after the edit and held to that. Report the spec; fix it by hand as the hints say.""",
+)
+
 IMP008 = declare(
     "IMP008",
     "import-bad-units",

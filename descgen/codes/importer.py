@@ -313,3 +313,13 @@ IMP038 = declare(
       waiver when its defect is fixed (an unused waiver is SPEC130). Input errors (a spec that cannot be
       built) and descgen's own proofs are never waived.""",
 )
+
+IMP039 = declare(
+    "IMP039",
+    "import-fixed",
+    "info",
+    "import --fix applied the fixes that cannot change the robot to the imported spec (Jazzy's one-to-one "
+    "renames, parameters Jazzy removed): the spec is no longer the description word for word there.",
+    """Each fix is listed; the rest of the spec is the description as it is, its defects waived as usual
+      (IMP038). The same fixes are what descgen fix SPEC applies to a spec you have.""",
+)

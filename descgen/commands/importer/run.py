@@ -31,6 +31,7 @@ from descgen.codes.importer import (
     IMP035,
     IMP037,
     IMP038,
+    IMP039,
 )
 from descgen.commands.importer import control, variants
 from descgen.commands.importer.packages import package_meshes, package_name, package_paths, symbolic, with_package_name
@@ -57,6 +58,7 @@ class ImportOptions:
     spec_name: str = "robot.yaml"  # the spec's file name, for messages about it
     variants: tuple[variants.Variant, ...] = ()  # --variant: hardware variants of a Xacro
     waive: bool = True  # write a waiver for each defect of the description (IMP038); --no-waivers: not
+    fix: bool = False  # --fix: the safe fixes of descgen/commands/fix.py applied to the spec first (IMP039)
 
 
 @dataclass(frozen=True)
@@ -589,6 +591,25 @@ def import_description(path: Path, opts: ImportOptions) -> Outcome:
 WAIVER_REASON = "imported as is"
 
 
+def _fixed(outcome: Outcome) -> None:
+    """``import --fix``: the safe fixes applied to the proven spec before its waivers are written."""
+    from descgen.commands.fix import fix_text
+
+    imp = outcome.imported
+    try:
+        fixed = fix_text(imp.spec_text, imp.spec_name)
+    except InputError as exc:  # a fix that could not be proven safe: the spec stays as imported
+        imp.report += [dataclasses.replace(f, severity="warning") for f in exc.findings]
+        return
+    if fixed.fixes:
+        imp.spec_text = fixed.after
+        done = "; ".join(f"{x.code} {x.subject}: {x.what}" for x in fixed.fixes)
+        hint = "review the diff of descgen fix --dry-run on the unfixed import if in doubt"
+        imp.report.append(
+            IMP039.finding(f"{len(fixed.fixes)} fix(es) applied: {done}", hint, "import", Where(imp.spec_name))
+        )
+
+
 def _waived(outcome: Outcome, opts: ImportOptions) -> Outcome:
     """A proven import whose spec the rules reject at the description's own defects gets a
     waiver for each (code, subject), reason "imported as is" (IMP038): validate, generate and
@@ -597,6 +618,8 @@ def _waived(outcome: Outcome, opts: ImportOptions) -> Outcome:
     from descgen.audit.registry import RULES, run
     from descgen.audit.spec import check_stage, load_spec_text
 
+    if outcome.proven and opts.fix:
+        _fixed(outcome)
     if not outcome.proven or not opts.waive:
         return outcome
     imp = outcome.imported
