@@ -240,3 +240,20 @@ def test_every_table_of_the_committed_page_keeps_its_cells() -> None:
         assert len({len(r) for r in rows}) == 1, rows
     proofs = {row[0]: row[1] for row in tables[0][1:]}
     assert proofs["xacro hardware:=gazebo|real expands to the model's variants"] == "passed"
+
+
+def test_a_robot_without_a_control_run_still_gets_its_page(tmp_path: Path) -> None:
+    """No committed control run (an imported robot on its first day): sections 6 and 7 say so and
+    how to make one, and the page is written; they used to FAIL it (GEN081, nothing written)."""
+    (tmp_path / "specs").mkdir()
+    shutil.copy(ROOT / SPEC, tmp_path / SPEC)
+    assert cli("generate", tmp_path / SPEC).returncode == 0
+    ran = cli("report", tmp_path / SPEC)
+    assert ran.returncode == 0, ran.stderr
+    page = page_of(tmp_path)
+    for section in ("## 6. Interface and lifecycle traces", "## 7. Desired versus measured"):
+        text = page.split(section, 1)[1].split("\n## ", 1)[0]
+        assert "**Verdict: NOT APPLICABLE**: no control run is committed" in text
+        assert "descgen control SPEC --trajectory" in text
+    assert "**Verdict: FAIL**" not in page
+    assert cli("check", tmp_path / SPEC).returncode == 0  # the page is current as written

@@ -300,8 +300,10 @@ def _timestamps(robot: Any) -> list[str]:
     return lines
 
 
-def _control(package: Path) -> tuple[list[str], list[str]]:
+def _control(package: Path, robot: Any) -> tuple[list[str], list[str]]:
     ev = package / "evidence"
+    if not (ev / "verdict.json").is_file():
+        return _no_control_run(robot)
     try:
         verdict = json.loads((ev / "verdict.json").read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -337,6 +339,22 @@ def _control(package: Path) -> tuple[list[str], list[str]]:
     ]
     if echo:
         dvm += [f"> {_md().mdtext(verdict.get('note', ''))}", ""]
+    return traces, dvm
+
+
+def _no_control_run(robot: Any) -> tuple[list[str], list[str]]:
+    """Sections 6 and 7 without a committed control run: they say why and how to make one (a
+    section that does not apply is no failure of the page: issue 29, a report for every robot)."""
+    if robot.ros2_control is None:
+        why = "the robot has no ros2_control: no controllers to start, no commands to follow"
+    else:
+        why = (
+            "no control run is committed: "
+            + _md().mdspan("descgen control SPEC --trajectory TRAJECTORY.yaml")
+            + " starts the controllers against a simulated plant and writes the evidence these sections summarise"
+        )
+    traces = ["## 6. Interface and lifecycle traces", "", _not_applicable(why), ""]
+    dvm = ["## 7. Desired versus measured", "", _not_applicable(why), ""]
     return traces, dvm
 
 
@@ -444,7 +462,7 @@ def build(
     ``n`` the number of files generate writes, ``proofs`` the results of checks.CHECKS by name
     when the caller has them, ``key`` the :func:`input_key` to record on the last line."""
     validation, _ = _validation(spec, shown, package_paths)
-    traces, dvm = _control(package)
+    traces, dvm = _control(package, robot)
     parts = [
         f"# Evidence for {_md().mdtext(robot.name)}",
         "",
