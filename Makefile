@@ -44,14 +44,23 @@ system-deps:
 test: lint system-deps
 	DESCGEN_REQUIRE_TOOLS=1 $(BIN)/pytest -q -n auto --durations=10
 
-# every benchmark beside its anchor, then one table (benchmarks/summary.py) for the README;
-# about 10 minutes on 2 cores (bench_tf audits a 10-minute recording here; --minutes 30 by hand)
+# every benchmark beside its anchor, timed by one harness (benchmarks/harness.py: descgen and the
+# anchor interleaved, CPU time of the process tree, median and min of 7 pairs), then one table
+# (benchmarks/summary.py) under the machine line; about 30 minutes on 2 cores (bench_tf audits a
+# 10-minute recording here; --minutes 30 by hand). `make bench QUICK=1`: 3 pairs and smaller
+# workloads, for CI; it fails on nothing and prints the table. Without QUICK a benchmark that
+# fails makes the target fail, after the table.
+QUICK ?=
 bench: setup
-	@mkdir -p build && rm -f build/bench-rows.jsonl
+	@mkdir -p build && rm -f build/bench-rows.jsonl build/bench-failed
+	@$(PY) benchmarks/harness.py
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
-		if [ $$b = benchmarks/bench_tf.py ]; then args="--minutes 10"; else args=""; fi; \
-		BENCH_ROWS=build/bench-rows.jsonl $(PY) $$b $$args || echo "!! $$b failed"; done
+		args="$(if $(QUICK),--quick,)"; \
+		if [ $$b = benchmarks/bench_tf.py ]; then args="$$args --minutes 10"; fi; \
+		BENCH_ROWS=build/bench-rows.jsonl $(PY) $$b $$args || { echo "!! $$b failed"; echo $$b >> build/bench-failed; }; \
+	done
 	@$(PY) benchmarks/summary.py build/bench-rows.jsonl
+	@if [ -z "$(QUICK)" ] && [ -s build/bench-failed ]; then echo "failed: $$(cat build/bench-failed)"; exit 1; fi
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .mypy_cache .ruff_cache

@@ -1,43 +1,43 @@
-"""Time `descgen import` per robot of the example-robot-data corpus (in process: read, write
-the spec, prove the round trip, audit) beside the `xacro` command line on the same file (the
-anchor: what every ROS user runs on a description), and print the ratio.
+"""`descgen import` beside the `xacro` command line on the same file (the anchor: what every ROS
+user runs on a description), cold process against cold process: a fresh `descgen import`
+process per robot (read, write the spec to stdout, prove the round trip, audit) beside a fresh
+`xacro` process per robot, CPU time of each process tree (benchmarks/harness.py).
 
-The vendored Xacro corpus's UR ur5e (tests/data/xacro_corpus, `ur_type:=ur5e`) is timed too,
-imported with `--package-path` only; its `xacro` anchor resolves `$(find pkg)` in the same
-folders (the pip xacro has no ament index here), which is all the wrapper changes.
+Rows:
+- the vendored Xacro corpus's UR ur5e (tests/data/xacro_corpus, ``ur_type:=ur5e``), imported
+  with ``--package-path`` only; its `xacro` anchor resolves ``$(find pkg)`` in the same folders
+  (the pip xacro has no ament index here), which is all the wrapper changes. Interleaved pairs
+  (A B A B …), median and min.
+- example-robot-data's Panda (URDF and SRDF, STL meshes) beside `xacro` on its URDF: the same.
+- the whole example-robot-data corpus (69 URDFs, each with its SRDF when it has one, the corpus
+  as package path): robot by robot, descgen's process then xacro's on the same URDF, one pass
+  (a pass is ~150 s of CPU on 2 cores: 7 of them would be 18 minutes); the row shows the totals
+  of the pass, and its pairs column the robots. ``--quick``: every fourteenth robot (5).
+- extra files given on the command line: as the ur5e, with the given package path and args.
+
+descgen's caches live in one temporary DESCGEN_CACHE_DIR for the run: pint's definitions and
+compiled templates are warm after the first process; a robot's mesh facts are cold on its first
+import (the corpus pass) and warm after the uncounted pair (the paired rows). xacro has none.
 
 Run: .venv/bin/python benchmarks/bench_import.py [FILE.urdf.xacro ... --package-path DIR
-[--xacro-arg N:=V]...] (extra files are imported with the given package path and arguments).
+[--xacro-arg N:=V]...] [--quick] [--pairs N]
 """
 
 from __future__ import annotations
 
+import argparse
 import os
-import shutil
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from rows import row  # noqa: E402
+import harness  # noqa: E402
+from harness import BIN, FreshCache, Result, Timing, process  # noqa: E402
 
-from descgen.commands.importer.run import ImportOptions, import_description  # noqa: E402
-from descgen.core.findings import InputError  # noqa: E402
-from descgen.read.description import Options  # noqa: E402
 from tests.corpus import descriptions, share  # noqa: E402
-
-
-def _xacro() -> list[str]:
-    beside = Path(sys.executable).parent / "xacro"
-    found = str(beside) if beside.is_file() else shutil.which("xacro")
-    if found is None:
-        sys.exit("the xacro command is not installed (pip install xacro)")
-    return [found]
-
 
 XACRO_CORPUS = ROOT / "tests" / "data" / "xacro_corpus"
 UR5E = XACRO_CORPUS / "ur_description" / "urdf" / "ur_mocked.urdf.xacro"
@@ -59,73 +59,100 @@ sys.argv = ["xacro", *sys.argv[1:]]
 xacro.main()
 """
 
-
-def _time_xacro(cmd: list[str], path: Path, options: Options) -> float:
-    args = [f"{k}:={v}" for k, v in options.xacro_args.items()]
-    env = None
-    if options.package_paths:
-        cmd = [sys.executable, "-c", _XACRO_WITH_FIND]
-        env = dict(os.environ, BENCH_PACKAGE_PATH=os.pathsep.join(map(str, options.package_paths)))
-    t0 = time.perf_counter()
-    done = subprocess.run([*cmd, str(path), *args], check=False, capture_output=True, env=env)
-    took = time.perf_counter() - t0
-    if done.returncode != 0:
-        sys.exit(f"xacro failed on {path}: {done.stderr.decode(errors='replace').strip()}")
-    return took
+CACHE = FreshCache()
+ENV = harness.env(CACHE.path)
+XACRO = str(BIN / "xacro") if (BIN / "xacro").is_file() else "xacro"
 
 
-def _time_import(path: Path, options: Options) -> tuple[float, str]:
-    t0 = time.perf_counter()
-    try:
-        outcome = import_description(path, ImportOptions(options))
-        verdict = "proven" if outcome.proven else ("invalid" if outcome.invalid else "differs")
-    except InputError:
-        verdict = "unusable"
-    return time.perf_counter() - t0, verdict
+class Job:
+    """One robot: its file, SRDF, package paths and Xacro arguments."""
+
+    def __init__(self, ident: str, path: Path, srdf: Path | None, paths: tuple[Path, ...], args: dict[str, str]):
+        self.ident, self.path, self.srdf, self.paths, self.args = ident, path, srdf, paths, args
+
+    def descgen(self) -> Timing:
+        argv = [str(BIN / "descgen"), "import", str(self.path)]
+        argv += ["--srdf", str(self.srdf)] if self.srdf else []
+        for p in self.paths:
+            argv += ["--package-path", str(p)]
+        for k, v in self.args.items():
+            argv += ["--xacro-arg", f"{k}:={v}"]
+        # exit 2: a description import refuses (a finding, not a crash); it still read and audited it
+        return process(argv, env=ENV, ok=(0, 1, 2))
+
+    def xacro(self) -> Timing:
+        args = [f"{k}:={v}" for k, v in self.args.items()]
+        if self.path.name.endswith(".xacro") and self.paths:
+            env = ENV | {"BENCH_PACKAGE_PATH": os.pathsep.join(map(str, self.paths))}
+            return process([sys.executable, "-c", _XACRO_WITH_FIND, str(self.path), *args], env=env)
+        return process([XACRO, str(self.path), *args], env=ENV)
 
 
-def main(argv: list[str]) -> None:
-    import argparse
+def paired(job: Job, label: str) -> None:
+    harness.compare(f"import of {label}", job.descgen, job.xacro, kind="cold", anchor_name="xacro")
 
-    ap = argparse.ArgumentParser()
-    ap.add_argument("files", nargs="*", type=Path)
-    ap.add_argument("--package-path", action="append", type=Path, default=[])
-    ap.add_argument("--xacro-arg", action="append", default=[], help="N:=V, for the extra files")
-    args = ap.parse_args(argv)
-    extra, paths = args.files, tuple(args.package_path)
-    xargs = dict(a.split(":=", 1) for a in args.xacro_arg)
+
+def corpus_pass(jobs: list[Job]) -> None:
+    """Robot by robot, descgen then xacro, one pass; the row shows the totals. A robot whose
+    descgen process crashes is left out on both sides (and fails the script at its end)."""
+    result = Result()
+    ours, theirs = Timing(0.0, 0.0), Timing(0.0, 0.0)
+    crashed = []
+    print(f"{'robot':<64} {'import CPU s':>12} {'xacro CPU s':>11} {'ratio':>6}")
+    for job in jobs:
+        try:
+            d = job.descgen()
+        except SystemExit as exc:
+            crashed.append(job.ident)
+            print(f"{job.ident:<64} crashed: {str(exc).strip().splitlines()[-1]}", flush=True)
+            continue
+        a = job.xacro()
+        print(f"{job.ident:<64} {d.cpu:12.3f} {a.cpu:11.3f} {d.cpu / a.cpu:6.1f}", flush=True)
+        ours = Timing(ours.cpu + d.cpu, ours.wall + d.wall)
+        theirs = Timing(theirs.cpu + a.cpu, theirs.wall + a.wall)
+    if crashed:
+        harness.FAILED.append(f"import of {', '.join(crashed)}")
+    result.descgen.append(ours)
+    result.anchor.append(theirs)
+    counted = len(jobs) - len(crashed)
+    left_out = f", {len(crashed)} that crashed left out" if crashed else ""
+    harness.report(
+        f"import of {counted} example-robot-data robots, one process each, robot by robot "
+        f"(total of one pass{left_out}; pairs: robots)",
+        result,
+        kind="cold",
+        anchor_name="xacro",
+        pairs=counted,
+    )
+
+
+def main() -> None:
+    def add(ap: argparse.ArgumentParser) -> None:
+        ap.add_argument("files", nargs="*", type=Path)
+        ap.add_argument("--package-path", action="append", type=Path, default=[])
+        ap.add_argument("--xacro-arg", action="append", default=[], help="N:=V, for the extra files")
+
+    args = harness.parse(__doc__, add)
     root = share()
-    jobs = [
-        (ident, urdf, Options(srdf=srdf, package_paths=(root,) if root else ())) for ident, urdf, srdf in descriptions()
-    ]
-    if UR5E.is_file():
-        ur = Options(xacro_args={"ur_type": "ur5e", "name": "ur5e"}, package_paths=(XACRO_CORPUS,))
-        jobs.append(("xacro_corpus: ur_description ur_mocked ur_type:=ur5e", UR5E, ur))
-    jobs += [(str(p), p, Options(xacro_args=xargs, package_paths=paths)) for p in extra]
-    cmd = _xacro()
-    if jobs:
-        _time_import(jobs[0][1], jobs[0][2])  # warm imports
-    total_i = total_x = 0.0
-    xacro_rows = []
-    print(f"{'robot':<64} {'import s':>9} {'xacro s':>8} {'ratio':>6}  verdict")
-    for ident, path, options in jobs:
-        t_i, verdict = _time_import(path, options)
-        t_x = _time_xacro(cmd, path, options)
-        total_i, total_x = total_i + t_i, total_x + t_x
-        print(f"{ident:<64} {t_i:9.3f} {t_x:8.3f} {t_i / t_x:6.1f}  {verdict}")
-        if path.name.endswith(".xacro"):
-            xacro_rows.append((ident, t_i, t_x))
-    if jobs:
-        print(f"{'total (' + str(len(jobs)) + ' robots)':<64} {total_i:9.3f} {total_x:8.3f} {total_i / total_x:6.1f}")
-        row(
-            f"import of {len(jobs)} corpus robots, in process (anchor: xacro, one process each)",
-            total_i,
-            total_x,
-            "warm",
-        )
-        for ident, t_i, t_x in xacro_rows:
-            row(f"import of {ident}, in process (anchor: xacro, one process)", t_i, t_x, "warm")
+    corpus = [Job(ident, urdf, srdf, (root,) if root else (), {}) for ident, urdf, srdf in descriptions()]
+    try:
+        if UR5E.is_file():
+            ur = Job("ur5e", UR5E, None, (XACRO_CORPUS,), {"ur_type": "ur5e", "name": "ur5e"})
+            paired(ur, "xacro_corpus: ur_description ur_mocked ur_type:=ur5e")
+        panda = [j for j in corpus if j.ident == "panda_description/urdf/panda.urdf"]
+        if panda:
+            paired(panda[0], "example-robot-data's Panda (URDF + SRDF, STL meshes)")
+        xargs = dict(a.split(":=", 1) for a in args.xacro_arg)
+        for p in args.files:
+            paired(Job(str(p), p, None, tuple(args.package_path), xargs), str(p))
+        if corpus:
+            corpus_pass(corpus[::14] if harness.QUICK else corpus)
+        else:
+            print("example-robot-data is not installed: no corpus row")
+    finally:
+        CACHE.close()
+    harness.done()
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    main()

@@ -1,33 +1,42 @@
-"""tf at C++ pace, each figure beside its anchor measured in the same run:
+"""tf at C++ pace, each figure beside its anchor, interleaved (benchmarks/harness.py: A B A B …,
+median and min of CPU time):
 
-1. lookups/s of our tf buffer beside tf2's C++ BufferCore (Debian python3-tf2) on the same
-   workload (a 10-frame chain, 100 samples per link, random lookups), rounds interleaved,
-   medians;
-2. tf-audit of a 1-minute and a 30-minute synthetic recording of the example robot: wall
-   time beside a plain streaming read of the same recording with rosbags (bytes only, and
-   bytes + deserialize of every message), and peak memory (tracemalloc peak of the audit
-   call, and the process's max RSS), each in a fresh process.
+1. lookups/s of descgen's tf buffer beside tf2's C++ BufferCore (Debian python3-tf2, through
+   its Python binding) on the same workload: a 31-frame tree with five branches (a root and
+   five chains of six frames), every transform with a non-identity rotation and a translation,
+   100 samples per frame at 20 Hz, and random lookups between any two frames at random times
+   (interpolated). Each side is timed around its lookup loop alone (CPU time of the loop; tf2's
+   in its own process, which prints it), after both buffers hold the same transforms; before
+   timing, the first lookups of both sides are compared and must agree.
+2. tf-audit of a 1-minute and a longer synthetic recording of the example robot
+   (``descgen tf-audit --target odom --max-age '100 ms'``, a fresh process) beside a fresh
+   process streaming the same recording with rosbags and decoding exactly the messages
+   tf-audit decodes: /tf, /tf_static and the sensor topics it looks up (every topic with a
+   header but /joint_states; here /camera/camera_info), not /joint_states, which tf-audit never
+   reads. CPU time of each process tree. Peak memory of the audit (tracemalloc peak of the
+   audit call, and the process's max RSS) is printed for each recording, from one more process.
 
-Run: .venv/bin/python benchmarks/bench_tf.py [--minutes 30]   (`make bench` passes --minutes 10: the
-30-minute recording takes several minutes to write and to audit four times on 2 cores)
+Run: .venv/bin/python benchmarks/bench_tf.py [--minutes 30] [--quick] [--pairs N]   (`make bench`
+passes --minutes 10; --quick: a 0.5- and a 1-minute recording and fewer lookups)
 """
 
 from __future__ import annotations
 
-import argparse
 import json
+import math
 import random
-import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
-ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-ROUNDS = 5
+import harness
+from harness import BIN, ROOT, Timing, in_process, python
 
+TF2_PYTHON = "/usr/bin/python3"
 TF2_TIMER = r"""
 import json, sys, time
 import genpy, tf2_py as tf2
@@ -41,146 +50,166 @@ for p, c, s, t, q in w["sets"]:
     m.transform.rotation.x, m.transform.rotation.y, m.transform.rotation.z, m.transform.rotation.w = q
     b.set_transform(m, "bench")
 queries = [(a, s, genpy.Time(x // 10**9, x % 10**9)) for a, s, x in w["lookups"]]
-t0 = time.perf_counter()
+first = []
+for a, s, x in queries[:20]:
+    t, r = b.lookup_transform_core(a, s, x).transform.translation, b.lookup_transform_core(a, s, x).transform.rotation
+    first.append([t.x, t.y, t.z, r.x, r.y, r.z, r.w])
+c0, t0 = time.process_time(), time.perf_counter()
 for a, s, x in queries:
     b.lookup_transform_core(a, s, x)
-print(time.perf_counter() - t0)
+print(json.dumps({"cpu": time.process_time() - c0, "wall": time.perf_counter() - t0, "first": first}))
 """
 
-# One measurement of one recording, run in a fresh process (argv: kind, bag).
-MEASURE = r"""
-import resource, sys, time, tracemalloc
-from pathlib import Path
-kind, bag = sys.argv[1], Path(sys.argv[2])
+# the anchor of tf-audit: stream the recording, decode what tf-audit decodes (argv: bag)
+STREAM = r"""
+import sys
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import Stores, get_typestore
-from descgen.commands.tf import bagaudit
 ts = get_typestore(Stores.ROS2_JAZZY)
-if kind == "peak":
-    tracemalloc.start()
-t0 = time.perf_counter()
-if kind == "read":
-    with Reader(bag) as r:
-        n = sum(1 for _ in r.messages())
-elif kind == "deserialize":
-    with Reader(bag) as r:
-        for c, _, raw in r.messages():
-            ts.deserialize_cdr(raw, c.msgtype)
-else:
-    bagaudit.audit(bag, "odom", max_age_ns=100_000_000)
-wall = time.perf_counter() - t0
-peak = tracemalloc.get_traced_memory()[1] if kind == "peak" else 0
-print(wall, peak, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024)
+def looked_up(c):  # tf-audit's topics: /tf, /tf_static, every other topic with a header but joint states
+    if c.topic in ("/tf", "/tf_static"):
+        return True
+    fields = [name for name, _ in ts.fielddefs[c.msgtype][1]]
+    return c.msgtype != "sensor_msgs/msg/JointState" and "header" in fields
+n = 0
+with Reader(sys.argv[1]) as r:
+    for c, _, raw in r.messages(connections=[c for c in r.connections if looked_up(c)]):
+        ts.deserialize_cdr(raw, c.msgtype)
+        n += 1
+print(n)
+"""
+
+PEAK = r"""
+import resource, sys, tracemalloc
+from pathlib import Path
+from descgen.commands.tf import bagaudit
+tracemalloc.start()
+bagaudit.audit(Path(sys.argv[1]), "odom", max_age_ns=100_000_000)
+print(tracemalloc.get_traced_memory()[1], resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024)
 """
 
 
-def workload(frames: int = 10, samples: int = 100, lookups: int = 20000) -> dict[str, list[object]]:
+def _quaternion(rng: random.Random) -> list[float]:
+    """A random unit quaternion (x, y, z, w), never near the identity."""
+    while True:
+        q = [rng.gauss(0, 1) for _ in range(4)]
+        n = math.sqrt(sum(v * v for v in q))
+        q = [v / n for v in q]
+        if abs(q[3]) < 0.95:
+            return q
+
+
+def workload(branches: int = 5, depth: int = 6, samples: int = 100, lookups: int = 20000) -> dict[str, Any]:
+    """A root and ``branches`` chains of ``depth`` frames (31 frames by default), each transform
+    rotated and translated, ``samples`` stamps per frame at 20 Hz; random lookups."""
     rng = random.Random(1)
+    edges = []
+    for b in range(branches):
+        parent = "root"
+        for d in range(depth):
+            child = f"b{b}_{d}"
+            edges.append((parent, child))
+            parent = child
+    frames = ["root", *(c for _, c in edges)]
     sets = []
-    for i in range(1, frames):
+    for parent, child in edges:
         for k in range(samples):
             stamp = 1_000_000_000 + k * 50_000_000
-            sets.append((f"f{i - 1}", f"f{i}", stamp, [rng.random(), rng.random(), rng.random()], [0.0, 0.0, 0.0, 1.0]))
+            t = [rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(0.05, 0.5)]
+            sets.append((parent, child, stamp, t, _quaternion(rng)))
     span = (samples - 1) * 50_000_000
-    qs = [
-        (f"f{rng.randrange(frames)}", f"f{rng.randrange(frames)}", 1_000_000_000 + rng.randrange(span))
-        for _ in range(lookups)
-    ]
-    qs = [q for q in qs if q[0] != q[1]]
-    return {"sets": sets, "lookups": qs}
+    qs = []
+    while len(qs) < lookups:
+        a, s = rng.choice(frames), rng.choice(frames)
+        if a != s:
+            qs.append((a, s, 1_000_000_000 + rng.randrange(span)))
+    return {"sets": sets, "lookups": qs, "frames": len(frames)}
 
 
 def buffer_rates() -> None:
     from descgen.commands.tf.buffer import BufferCore
 
-    w = workload()
+    w = workload(lookups=5000 if harness.QUICK else 20000)
     buf = BufferCore()
-    for p, c, s, t, q in w["sets"]:  # type: ignore[misc]
-        buf.set_transform(p, c, s, tuple(t), tuple(q))
+    for p, c, s, t, q in w["sets"]:
+        assert buf.set_transform(p, c, s, tuple(t), tuple(q)) is None
     n = len(w["lookups"])
-    have_tf2 = Path("/usr/bin/python3").exists()
-    ours, theirs = [], []
-    for _ in range(ROUNDS):  # interleaved, so both see the same machine load
-        t0 = time.perf_counter()
-        for a, s, x in w["lookups"]:  # type: ignore[misc]
-            buf.lookup(a, s, x)
-        ours.append(n / (time.perf_counter() - t0))
-        if have_tf2:
-            r = subprocess.run(
-                ["/usr/bin/python3", "-c", TF2_TIMER], input=json.dumps(w), capture_output=True, text=True
-            )
-            have_tf2 = r.returncode == 0
-            if have_tf2:
-                theirs.append(n / float(r.stdout))
-    print(f"tf buffer: 10-frame chain, 100 samples per link, {n} random lookups, median of {ROUNDS} rounds")
-    print(f"  descgen BufferCore (Python): {statistics.median(ours):10.0f} lookups/s")
-    if theirs:
-        ratio = statistics.median(ours) / statistics.median(theirs)
-        print(f"  tf2 BufferCore (C++, anchor): {statistics.median(theirs):9.0f} lookups/s   ours/tf2 {ratio:.2f}x")
-    from rows import row
+    text = json.dumps(w)
 
-    anchor = statistics.median(theirs) if theirs else None
-    row("tf buffer lookups, 10-frame chain", statistics.median(ours), anchor, "warm", "lookups/s", "tf2 C++")
-    if not theirs:
-        print("  tf2 BufferCore: python3-tf2 not available")
+    def ours() -> Timing:
+        return in_process(lambda: [buf.lookup(a, s, x) for a, s, x in w["lookups"]])
 
+    def theirs() -> Timing:
+        r = subprocess.run([TF2_PYTHON, "-c", TF2_TIMER], input=text, capture_output=True, text=True, check=True)
+        out = json.loads(r.stdout)
+        return Timing(out["cpu"], out["wall"])
 
-def measure(kind: str, bag: Path) -> tuple[float, int, int]:
-    r = subprocess.run([sys.executable, "-c", MEASURE, kind, str(bag)], capture_output=True, text=True, cwd=ROOT)
-    if r.returncode:
-        raise SystemExit(r.stderr)
-    wall, peak, rss = r.stdout.split()
-    return float(wall), int(peak), int(rss)
+    measure = f"tf buffer lookups, {w['frames']}-frame tree of 5 branches with rotations, {n:,} random lookups"
+    try:
+        r = subprocess.run([TF2_PYTHON, "-c", TF2_TIMER], input=text, capture_output=True, text=True, check=True)
+    except (OSError, subprocess.CalledProcessError):
+        print("tf2 BufferCore: python3-tf2 not available; no anchor")
+        harness.alone(measure, ours, kind="warm", work=n, unit="lookups/s")
+        return
+    for (a, s, x), theirs_first in zip(w["lookups"], json.loads(r.stdout)["first"], strict=False):
+        mine = buf.lookup(a, s, x)
+        got = [*mine.translation, *mine.rotation]
+        sign = 1.0 if got[6] * theirs_first[6] >= 0 else -1.0  # q and -q are one rotation
+        close = all(abs(u - v) < 1e-6 for u, v in zip(got[:3], theirs_first[:3], strict=True))
+        close = close and all(abs(sign * u - v) < 1e-6 for u, v in zip(got[3:], theirs_first[3:], strict=True))
+        assert close, f"lookup {a} <- {s} at {x}: descgen {got}, tf2 {theirs_first}"
+    print("tf buffer: the first 20 lookups agree with tf2's to 1e-6")
+    harness.compare(measure, ours, theirs, kind="warm", work=n, unit="lookups/s", anchor_name="tf2 C++")
 
 
-def audit_figures(minutes: float) -> None:
+def audit_rows(minutes: float) -> None:
     from descgen.audit.spec import load_spec
     from descgen.commands.tf import scenario
 
     robot = load_spec(ROOT / "specs" / "warehouse_arm.yaml").robot
-    rows = []
+    env = harness.env(None)
+    descgen = str(BIN / "descgen")
+    lengths = (0.5, 1.0) if harness.QUICK else (1.0, minutes)
+    peaks = []
     with tempfile.TemporaryDirectory() as tmp:
-        for length in (1.0, minutes):
+        for length in lengths:
             bag = Path(tmp) / f"rec_{length:g}min"
             t0 = time.perf_counter()
             # the library's writer, not `descgen tf-scenario` (which caps --duration at 600 s)
             counts = scenario._write(robot, bag, (), length * 60.0, "mcap")
-            t_write = time.perf_counter() - t0
             size = sum(p.stat().st_size for p in bag.iterdir()) / 1e6
-            read, _, read_rss = measure("read", bag)
-            deser, _, _ = measure("deserialize", bag)
-            audit, _, audit_rss = measure("audit", bag)
-            _, peak, _ = measure("peak", bag)
-            rows.append((length, sum(counts.values()), size, t_write, read, read_rss, deser, audit, audit_rss, peak))
-    print("tf-audit (camera lookups into odom, --max-age 100 ms) beside a streaming read with rosbags")
-    for length, n, size, t_write, read, read_rss, deser, audit, audit_rss, peak in rows:
-        print(f"  {length:g}-minute recording: {n} messages, {size:.0f} MB MCAP (written in {t_write:.0f} s)")
-        print(f"    read (bytes only, anchor):   {read:6.2f} s, max RSS {read_rss / 1e6:5.0f} MB")
-        print(f"    read + deserialize (anchor): {deser:6.2f} s")
-        print(
-            f"    tf-audit:                    {audit:6.2f} s, max RSS {audit_rss / 1e6:5.0f} MB, "
-            f"tracemalloc peak {peak / 1e6:.1f} MB; {audit / read:.1f}x the bytes-only read, "
-            f"{audit / deser:.2f}x read + deserialize"
-        )
-    from rows import row
-
-    for length, _, _, _, _, _, deser, audit, *_ in rows:
-        measure_ = f"tf-audit of a {length:g}-minute recording (fresh processes)"
-        row(measure_, audit, deser, "cold", anchor_name="rosbags read+deserialize")
-    (_, *_, peak1), (_, *_, peak30) = rows
-    rss1, rss30 = rows[0][8], rows[1][8]
+            _, decoded = python(STREAM, str(bag), env=env)
+            print(
+                f"{length:g}-minute recording: {sum(counts.values()):,} messages ({counts}), {size:.0f} MB MCAP, "
+                f"written in {time.perf_counter() - t0:.0f} s; the anchor decodes {int(decoded):,} of them"
+            )
+            harness.compare(
+                f"tf-audit of a {length:g}-minute recording",
+                lambda b=bag: harness.process(  # type: ignore[misc]
+                    [descgen, "tf-audit", str(b), "--target", "odom", "--max-age", "100 ms"], env=env, ok=(0, 1)
+                ),
+                lambda b=bag: python(STREAM, str(b), env=env)[0],  # type: ignore[misc]
+                kind="cold",
+                anchor_name="rosbags read + decode of the same topics",
+            )
+            _, out = python(PEAK, str(bag), env=env)
+            peak, rss = map(int, out.split())
+            peaks.append((length, peak, rss))
+            print(f"  tf-audit memory: tracemalloc peak {peak / 1e6:.1f} MB, max RSS {rss / 1e6:.0f} MB")
+    (l1, p1, r1), (l2, p2, r2) = peaks
     print(
-        f"  memory, {minutes:g} min / 1 min: tracemalloc peak {peak30 / peak1:.2f}x, max RSS {rss30 / rss1:.2f}x "
-        "(goal: within 1.3x)"
+        f"memory, {l2:g} min / {l1:g} min: tracemalloc peak {p2 / p1:.2f}x, max RSS {r2 / r1:.2f}x (goal: within 1.3x)"
     )
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--minutes", type=float, default=30.0, help="length of the long recording")
-    args = ap.parse_args()
+    args = harness.parse(
+        __doc__,
+        lambda ap: ap.add_argument("--minutes", type=float, default=30.0, help="length of the long recording"),
+    )
     buffer_rates()
-    audit_figures(args.minutes)
+    audit_rows(args.minutes)
+    harness.done()
 
 
 if __name__ == "__main__":
