@@ -454,3 +454,22 @@ def test_audit_parity_on_corpus_robots(tmp_path: Path, ident: str) -> None:
     spec.write_text(outcome.imported.spec_text)
     original = {(f.code, f.subject) for f in audit(urdf, Options(srdf=srdf, package_paths=paths))}
     assert {(f.code, f.subject) for f in audit(spec, Options(package_paths=paths))} == original
+
+
+def test_a_group_state_without_a_group_is_left_out_as_moveit_leaves_it(tmp_path: Path) -> None:
+    """z1.srdf's states 'home' and 'arm_up' name no group: srdfdom requires one and skips the
+    state, so MoveIt never has them. Import used to write group: '' (SPEC050: the spec could not
+    be generated); now it leaves them out, says so (IMP040), and the robot generates."""
+    root = share()
+    if root is None:
+        pytest.fail("example-robot-data is not installed (the test extra installs it)")
+    robots = root / "example-robot-data" / "robots" / "z1_description"
+    srdf = robots / "srdf" / "z1.srdf"
+    assert etree.parse(str(srdf)).xpath("count(//group_state[not(@group)])") == 2
+    spec = tmp_path / "z1.yaml"
+    ran = cli("import", robots / "urdf" / "z1.urdf", "--srdf", srdf, "--package-path", root, "-o", spec)
+    assert ran.returncode == 0, ran.stderr
+    assert ran.stderr.count("warning[IMP040]") == 2
+    states = yaml.safe_load(spec.read_text())["semantic"].get("group_states", [])
+    assert all(s["group"] for s in states) and not {"home", "arm_up"} & {s["name"] for s in states}
+    assert cli("generate", spec, "--out", tmp_path / "gen", "--package-path", root).returncode == 0

@@ -323,3 +323,13 @@ IMP039 = declare(
     """Each fix is listed; the rest of the spec is the description as it is, its defects waived as usual
       (IMP038). The same fixes are what descgen fix SPEC applies to a spec you have.""",
 )
+
+IMP040 = declare(
+    "IMP040",
+    "import-group-state-without-group",
+    "warning",
+    "The SRDF has a group state with no group; MoveIt's SRDF parser refuses such a state, so the spec leaves it out.",
+    """srdfdom requires a group_state's group and skips the state without one, so MoveIt never offers it;
+      a spec's group state names its group (SPEC050). Add the group to the SRDF's state (the audit of the
+      original reports it too) and import again, or write it under group_states: in the spec.""",
+)

@@ -32,6 +32,7 @@ from descgen.codes.importer import (
     IMP037,
     IMP038,
     IMP039,
+    IMP040,
 )
 from descgen.commands.importer import control, variants
 from descgen.commands.importer.packages import package_meshes, package_name, package_paths, symbolic, with_package_name
@@ -215,6 +216,26 @@ def _quoted(text: str) -> str:
     return "concat(" + ', "\'", '.join(f"'{p}'" for p in text.split("'")) + ")"
 
 
+def _states_with_a_group(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
+    """The SRDF's group states that name a group; IMP040 for each that does not (srdfdom skips
+    it: MoveIt never has it)."""
+    sem = robot.semantic
+    if sem is None or all(s.group for s in sem.states):
+        return robot, []
+    found = [
+        IMP040.finding(
+            f"group state '{s.name}' names no group; MoveIt's SRDF parser skips it, and so does the spec",
+            "add group=\"...\" to the SRDF's <group_state>, or write the state in the spec's group_states:",
+            f"semantic.group_states:{s.name}",
+            s.where,
+        )
+        for s in sem.states
+        if not s.group
+    ]
+    kept = tuple(s for s in sem.states if s.group)
+    return dataclasses.replace(robot, semantic=dataclasses.replace(sem, states=kept)), found
+
+
 def _one_pair_each(robot: m.Robot) -> tuple[m.Robot, list[Finding]]:
     """The SRDF's disabled pairs, each link pair once (the first, with its reason); IMP037 for
     each repeat left out."""
@@ -275,6 +296,8 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
         report += more_states
         robot, repeated = _one_pair_each(robot)
         report += repeated
+        robot, groupless = _states_with_a_group(robot)
+        report += groupless
     kept, refused = passthrough.collect(root, located.get)
     # a $(find pkg) the expansion turned into this machine's path is written $(find pkg) again
     kept = [dataclasses.replace(k, xml=symbolic(k.xml, search)) for k in kept]
