@@ -125,7 +125,7 @@ def imported_once(corpus: str, ident: str, path: Path, options: object) -> tuple
 
 def spec_of(done: tuple[Outcome, Path]) -> Path:
     """The imported spec, written where import meant it to be."""
-    from descgen.commands.importer.run import write_spec
+    from descgen.write.spec_file import write_spec
 
     outcome, spec = done
     if not spec.exists():

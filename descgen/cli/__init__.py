@@ -258,7 +258,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
 
     out: Path | None = args.output
     if out is not None:
-        from descgen.commands.importer.run import refuse_unsafe_output
+        from descgen.write.spec_file import refuse_unsafe_output
 
         refuse_unsafe_output(out)  # a link, FIFO or device: never replaced, --force or not
     if out is not None and out.exists() and not args.force:
@@ -292,7 +292,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
     if out is None:
         sys.stdout.write(imp.spec_text)
     else:
-        from descgen.commands.importer.run import write_spec
+        from descgen.write.spec_file import write_spec
 
         write_spec(out, imp.spec_text)
     print(cli_format.import_summary(result, str(out) if out else "stdout"), file=sys.stderr)

@@ -274,8 +274,8 @@ def _refused(file: str, why: str) -> InputError:
 
 def fix_file(path: Path, write: bool) -> Fixed:
     """``descgen fix``: the fixes of the spec at ``path``, written in place when ``write``."""
-    from descgen.commands.importer.run import write_spec
     from descgen.infra.yamlsource import read_text
+    from descgen.write.spec_file import write_spec
 
     text = read_text(path, str(path))
     fixed = fix_text(text, str(path))
