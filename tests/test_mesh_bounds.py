@@ -158,7 +158,16 @@ def test_obj_box_is_of_the_used_positions(faces: str) -> None:
     assert got.tolist() == [[0, 0, 0], [1, 2, 0.5]]  # hand value
 
 
+def test_obj_indented_lines_count_as_trimesh_counts_them() -> None:
+    """trimesh counts an indented position line and skips an indented face line."""
+    data = ("  v 7 7 7\n" + _SQUARE + "f 2 3 4\n  f 1 2 3\n").encode()
+    got, want = _box(data, "obj"), _trimesh_box(data, "obj")
+    assert got is not None and want is not None and np.array_equal(got, want)
+    assert got.tolist() == [[0, 0, 0], [1, 2, 0]]  # positions 2-4: the indented one shifted them
+
+
 def test_obj_the_reader_leaves_to_trimesh() -> None:
+    assert bounds((_SQUARE + "f 1 2 3\nf 1 4\n").encode(), "obj") is None  # a face of two corners
     assert bounds((_SQUARE + "f -4 -3 -2\n").encode(), "obj") is None  # relative indices
     assert bounds((_SQUARE + "f 1 2 9\n").encode(), "obj") is None  # an index past the last position
     assert bounds((_SQUARE + "f 1/1 2/2 3/3\nf 1 3 4\n").encode(), "obj") is None  # two corner forms
@@ -234,11 +243,37 @@ def test_collada_index_lists_in_other_forms_are_read_whole() -> None:
     assert _check(_dae(spread, _PLAIN)).tolist() == [[0, 0, 0], [1, 2, 3]]
 
 
-def test_collada_polygons_and_polylists() -> None:
+def test_collada_polylists_and_what_trimesh_decides() -> None:
     quad = "<vcount>4</vcount><p>0 0 1 0 2 0 3 1</p>"
     assert _check(_dae(quad, _PLAIN, primitive="polylist")).tolist() == [[0, 0, 0], [1, 2, 3]]
-    two = "<p>0 0 1 0 2 0</p><p>0 1 2 1 3 1</p>"
-    assert _check(_dae(two, _PLAIN, primitive="polygons")).tolist() == [[0, 0, 0], [1, 2, 3]]
+    # a polygon of two corners makes no triangle, a vcount that disagrees with the list: trimesh decides
+    assert _box(_dae("<vcount>3 2</vcount><p>0 0 1 0 2 0 3 1 4 1</p>", _PLAIN, primitive="polylist"), "dae") is None
+    assert _box(_dae("<vcount>3</vcount><p>0 0 1 0 2 0 3 1</p>", _PLAIN, primitive="polylist"), "dae") is None
+    for other in ("polygons", "tristrips", "trifans"):  # pycollada's own readings
+        assert _box(_dae("<p>0 0 1 0 2 0</p><p>0 1 2 1 3 1</p>", _PLAIN, primitive=other), "dae") is None
+
+
+def test_collada_triangles_are_read_from_their_first_list_as_pycollada_reads_them() -> None:
+    two = "<p>0 0 1 0 2 0</p><p>0 1 4 1 3 1</p>"  # pycollada reads the first <p> alone
+    assert _check(_dae(two, _PLAIN)).tolist() == [[0, 0, 0], [1, 2, 0]]
+    assert _box(_dae("<p>0 0 1 0 2 0 3 1</p>", _PLAIN), "dae") is None  # not whole triangles
+
+
+def test_collada_an_accessor_pycollada_reads_otherwise_is_left_to_trimesh() -> None:
+    data = _dae(_TRIANGLES, _PLAIN)
+    assert _box(data.replace(b'count="5" stride="3"', b'count="4" stride="3"'), "dae") is None
+    rotated = '<node id="n"><rotate>0 0 2 90</rotate><instance_geometry url="#g"/></node>'
+    assert _box(_dae(_TRIANGLES, rotated), "dae") is None  # an axis pycollada does not normalise
+
+
+def test_collada_a_scene_past_the_work_bound_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    from descgen.meshes import bounds as box_reader
+
+    monkeypatch.setattr(box_reader, "MAX_PLACED", 9)  # two instances of the 5-position geometry
+    twice = _PLAIN + '<node id="m"><translate>1 0 0</translate><instance_geometry url="#g"/></node>'
+    facts = bounds(_dae(_TRIANGLES, twice), "dae")
+    assert facts is not None and facts.problem is not None and "places more than 9 points" in facts.problem
+    assert bounds(_dae(_TRIANGLES, _PLAIN), "dae") is not None
 
 
 def test_collada_node_transforms_compose_as_pycollada_composes_them() -> None:

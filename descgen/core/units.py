@@ -262,11 +262,12 @@ def to_si(value: object, kind_name: str) -> float:
     return _to_si(value, kind_name)
 
 
-@functools.lru_cache(maxsize=4096)
+@functools.lru_cache(maxsize=4096, typed=True)
 def _to_si_cached(value: str | int | float, kind_name: str) -> float | tuple[str, str, str]:
     # pint parses slowly (~0.5 ms); specs repeat the same texts ("0", "100 mm") a lot, and a
     # bad text repeated (a YAML alias, a copied line) is refused as often: the refusal is
-    # remembered too (code, message, hint), so 10,000 repeats cost one parse
+    # remembered too (code, message, hint), so 10,000 repeats cost one parse. Typed: 28 and
+    # 28.0 are one key otherwise, and the refusal of one would quote the other ("28.0 kg")
     try:
         return _to_si(value, kind_name)
     except QuantityError as exc:

@@ -34,6 +34,16 @@ if TYPE_CHECKING:
 Box = tuple[tuple[float, float, float], tuple[float, float, float]]
 
 
+class _TooLargeError(Exception):
+    """A scene that places more points than :data:`MAX_PLACED`."""
+
+
+# Points moved by node transforms, summed over a COLLADA scene's instances: a file of a few MB
+# can instance one large geometry thousands of times (tens of minutes of work); the densest real
+# robot mesh places ~2 M. trimesh would do the same work, so the mesh is refused instead.
+MAX_PLACED = 20_000_000
+
+
 def bounds(data: bytes, kind: str, unit_meter: float | None = None) -> MeshFacts | None:
     """The facts of a mesh from its bounding box; None where trimesh must decide."""
     if kind == "stl":
@@ -41,7 +51,10 @@ def bounds(data: bytes, kind: str, unit_meter: float | None = None) -> MeshFacts
     elif kind == "obj":
         box = _obj(data)
     elif kind == "dae":
-        box = _dae(data)
+        try:
+            box = _dae(data)
+        except _TooLargeError:
+            return MeshFacts(problem=f"the COLLADA scene places more than {MAX_PLACED:,} points; descgen reads fewer")
     else:
         return None
     if box is None:
@@ -115,8 +128,11 @@ def _stl(data: bytes) -> Box | None:
 
 # -- OBJ ------------------------------------------------------------------------------------------
 
-_OBJ_V = re.compile(rb"\nv[ \t]+([^\r\n]*)")  # after a newline: the engine searches for it, not every offset
+# after a newline (the engine searches for it, not every offset), as trimesh reads them: a
+# position line may be indented, a face line not (tests/test_mesh_bounds.py holds both to trimesh)
+_OBJ_V = re.compile(rb"\n[ \t]*v[ \t]+([^\r\n]*)")
 _OBJ_F = re.compile(rb"\nf[ \t]+([^\r\n]*)")
+_OBJ_SHORT_F = re.compile(rb"\nf[ \t]+\S+(?:[ \t]+\S+)?[ \t]*\r?(?=\n|$)")  # a face of 1 or 2 corners
 
 
 def _obj(data: bytes) -> Box | None:
@@ -134,8 +150,8 @@ def _obj(data: bytes) -> Box | None:
         return None  # x y z [w] or x y z r g b: one form per file, else trimesh decides
     values = values.reshape(len(rows), width)[:, :3]
     corners = b" ".join(_OBJ_F.findall(text)).replace(b"//", b"/0/")  # v, v/vt, v/vt/vn, v//vn
-    if not corners:
-        return None
+    if not corners or _OBJ_SHORT_F.search(text):
+        return None  # no faces, or a face trimesh drops: it decides
     per_corner = corners.split(None, 1)[0].count(b"/") + 1
     numbers = _ints(corners.replace(b"/", b" "))
     if numbers is None or len(numbers) % per_corner:
@@ -152,7 +168,9 @@ def _obj(data: bytes) -> Box | None:
 
 # -- COLLADA --------------------------------------------------------------------------------------
 
-_PRIMITIVES = ("triangles", "polylist", "polygons")
+_PRIMITIVES = ("triangles", "polylist")
+# what pycollada also reads as triangles, or reads its own way: trimesh decides those files
+_OTHER_PRIMITIVES = ("polygons", "tristrips", "trifans")
 _TRANSFORMS = ("matrix", "translate", "rotate", "scale")
 _MOST_LOOKS = 64  # occurrences of one index tried before its primitives' indices are read whole
 
@@ -176,6 +194,7 @@ def _dae(data: bytes) -> Box | None:
         return None
     geometries: dict[str, list[_Positions] | None] = {}
     boxes: list[np.ndarray] = []
+    placed = 0
     stack: list[tuple[etree._Element, np.ndarray]] = [(n, np.eye(4)) for n in scene.iterchildren(f"{ns}node")]
     while stack:
         node, parent = stack.pop()
@@ -193,6 +212,9 @@ def _dae(data: bytes) -> Box | None:
             if sources is None:
                 return None
             for source in sources:
+                placed += len(source.points)
+                if placed > MAX_PLACED:
+                    raise _TooLargeError
                 box = source.placed_box(here)
                 if box is None:
                     return None
@@ -229,8 +251,8 @@ def _matrix(node: _Element, ns: str) -> np.ndarray | None:
             m = m @ t
         elif tag == "scale" and v.shape == (3,):
             m = m @ np.diag([v[0], v[1], v[2], 1.0])
-        elif tag == "rotate" and v.shape == (4,):
-            m = m @ _rotation(v[:3], math.radians(v[3]))
+        elif tag == "rotate" and v.shape == (4,) and abs(math.hypot(v[0], v[1], v[2]) - 1) < 1e-6:
+            m = m @ _rotation(v[:3], math.radians(v[3]))  # pycollada does not normalise another axis
         else:
             return None
     return m if np.isfinite(m).all() else None
@@ -338,6 +360,8 @@ def _geometry(geometry: _Element | None, ns: str, by_id: dict[str | None, _Eleme
     mesh = geometry.find(f"{ns}mesh")
     if mesh is None:
         return []
+    if any(mesh.find(f"{ns}{tag}") is not None for tag in _OTHER_PRIMITIVES):
+        return None
     sources: dict[str, _Positions] = {}
     for tag in _PRIMITIVES:
         for prim in mesh.iterchildren(f"{ns}{tag}"):
@@ -361,11 +385,30 @@ def _geometry(geometry: _Element | None, ns: str, by_id: dict[str | None, _Eleme
                 if points is None:
                     return None
                 sources[name] = _Positions(points)
+            text = _index_text(prim, ns, tag, stride)
+            if text is None:
+                return None
             # one space between numbers, as exporters write; a list in another form is read whole
-            text = b" %s " % b" ".join((p.text or "").strip().encode() for p in prim.iterchildren(f"{ns}p"))
             spaced = not (b"  " in text or b"\n" in text or b"\t" in text or b"\r" in text)
             sources[name].lists.append((text, stride, at, spaced))
     return [s for s in sources.values() if s.lists]
+
+
+def _index_text(prim: _Element, ns: str, tag: str, stride: int) -> bytes | None:
+    """The primitive's index list, padded with a space each side, as pycollada reads it: the
+    first ``<p>`` only; a count of numbers that makes whole triangles (``<triangles>``) or the
+    polygons ``<vcount>`` gives, each of at least 3 corners (``<polylist>``); else None."""
+    first = prim.find(f"{ns}p")
+    text = (first.text or "").strip().encode() if first is not None else b""
+    numbers = len(text.split()) if text else 0
+    if tag == "triangles":
+        if numbers % (3 * stride):
+            return None
+    else:
+        vcount = _ints((prim.findtext(f"{ns}vcount") or "").encode())
+        if vcount is None or (len(vcount) and vcount.min() < 3) or int(vcount.sum()) * stride != numbers:
+            return None
+    return b" %s " % text
 
 
 def _source(source: _Element | None, ns: str) -> np.ndarray | None:
@@ -383,9 +426,10 @@ def _source(source: _Element | None, ns: str) -> np.ndarray | None:
         count, stride, offset = (int(accessor.get(a, d)) for a, d in (("count", "0"), ("stride", "1"), ("offset", "0")))
     except ValueError:
         return None
-    if stride < 3 or count < 0 or offset < 0:
-        return None
+    params = len(accessor.findall(f"{ns}param"))
     values = _floats((array.text or "").encode())
-    if len(values) < offset + count * stride:
+    # pycollada shapes the whole array by the accessor's params, whatever its count and offset say;
+    # where those disagree, trimesh decides
+    if stride < 3 or params != stride or offset != 0 or count * stride != len(values):
         return None
     return values[offset : offset + count * stride].reshape(count, stride)[:, :3].astype(np.float32).astype(np.float64)
