@@ -173,3 +173,42 @@ def test_a_spec_that_does_not_read_is_an_input_error(tmp_path: Path) -> None:
     ran = cli("fix", spec)
     assert ran.returncode == 2 and "error[YAML001]" in ran.stderr
     assert spec.read_text() == "name: fx\nlinks: [\n"
+
+
+def test_a_vendor_variant_parameter_of_the_same_name_is_not_renamed(tmp_path: Path) -> None:
+    """fake_sensor_commands is GenericSystem's; under the real variant it is the vendor driver's."""
+    spec = tmp_path / "fx.yaml"
+    variant = (
+        '      fake_sensor_commands: "true"\n'
+        "    variants:\n"
+        "      real:\n"
+        "        plugin: vendor_driver/VendorSystem\n"
+        '        params: {fake_sensor_commands: "yes"}\n'
+    )
+    text = SPEC.replace("fake_components/GenericSystem   #", "mock_components/GenericSystem   #")
+    text = text.replace('      fake_sensor_commands: "true"\n', variant)
+    spec.write_text(text)
+    assert cli("fix", spec).returncode == 0
+    fixed = spec.read_text()
+    assert 'mock_sensor_commands: "true"' in fixed and 'params: {fake_sensor_commands: "yes"}' in fixed
+
+
+def test_a_fix_that_changes_the_ros2_control_model_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    def faster(f: object, doc: object, lines: list[str], deleted: set[int]) -> str:
+        for i, line in enumerate(lines):
+            lines[i] = line.replace("update_rate: 100 Hz", "update_rate: 200 Hz")
+        return "a bug"
+
+    monkeypatch.setitem(fix._FIXERS, "CTRL046", (faster,))
+    spec = tmp_path / "fx.yaml"
+    spec.write_text(SPEC)
+    ran = cli("fix", spec)
+    assert ran.returncode == 2 and "error[FIX001]" in ran.stderr and spec.read_text() == SPEC
+
+
+def test_a_fixed_spec_keeps_its_file_mode(tmp_path: Path) -> None:
+    spec = tmp_path / "fx.yaml"
+    spec.write_text(SPEC)
+    spec.chmod(0o600)
+    assert cli("fix", spec).returncode == 0
+    assert "mock_components" in spec.read_text() and spec.stat().st_mode & 0o777 == 0o600

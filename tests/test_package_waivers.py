@@ -42,6 +42,13 @@ def _copy(package: Path, tmp_path: Path) -> Path:
     return copy
 
 
+def _stamped(body: str) -> str:
+    """A waivers file as generate writes it: descgen's header over ``body``."""
+    from descgen.render import header
+
+    return header.add("descgen-waivers.yaml", body, "specs/warehouse_arm.yaml", "0" * 64)
+
+
 def _audit(package: Path, *more: object) -> tuple[int, str]:
     ran = cli(
         "audit",
@@ -83,7 +90,7 @@ def test_only_the_package_holding_the_description_is_read(package: Path, tmp_pat
 def test_only_a_rules_finding_can_be_waived(package: Path, tmp_path: Path) -> None:
     copy = _copy(package, tmp_path)
     doc = {"waivers": [{**WAIVER, "code": "READ001"}, {**WAIVER, "subject": "joint:shoulder_joint"}]}
-    (copy / "descgen-waivers.yaml").write_text(yaml.safe_dump(doc))
+    (copy / "descgen-waivers.yaml").write_text(_stamped(yaml.safe_dump(doc)))
     code, err = _audit(copy)
     assert code == 1 and "waived:" not in err
 
@@ -103,10 +110,10 @@ def test_a_waivers_file_that_is_not_one_is_an_error_at_its_line(
     package: Path, tmp_path: Path, text: str, line: int
 ) -> None:
     copy = _copy(package, tmp_path)
-    (copy / "descgen-waivers.yaml").write_text(text)
+    (copy / "descgen-waivers.yaml").write_text(_stamped(text))
     code, err = _audit(copy)
     assert code == 2 and "Traceback" not in err, err
-    assert f"descgen-waivers.yaml:{line}:" in err and ("error[READ049]" in err or "error[YAML001]" in err)
+    assert f"descgen-waivers.yaml:{line + 2}:" in err and ("error[READ049]" in err or "error[YAML001]" in err)
     assert _audit(copy, "--no-waivers")[0] == 1  # ignored on request: the raw verdict
 
 
@@ -118,5 +125,22 @@ def test_a_changed_waivers_file_is_read_again_with_the_findings_cache_on(
     copy = _copy(package, tmp_path)
     urdf = copy / "urdf" / "warehouse_arm.urdf"
     assert cli("audit", urdf).returncode == 0
-    (copy / "descgen-waivers.yaml").write_text("waivers: []\n")
+    (copy / "descgen-waivers.yaml").write_text(_stamped("waivers: []\n"))
     assert cli("audit", urdf).returncode == 1
+
+
+@pytest.mark.parametrize("how", ["no header", "edited after generate"])
+def test_a_waivers_file_generate_did_not_write_is_refused(package: Path, tmp_path: Path, how: str) -> None:
+    """A file that only looks like waivers (a third party's, one in a folder above that is no
+    package of this robot, or one edited by hand) waives nothing: READ049, exit 2."""
+    copy = _copy(package, tmp_path)
+    target = copy / "descgen-waivers.yaml"
+    text = target.read_text()
+    if how == "no header":
+        text = text.split("\n", 2)[2]
+    else:
+        text = text.replace("joint:elbow_joint", "joint:shoulder_lift_joint")
+    target.write_text(text)
+    code, err = _audit(copy)
+    assert code == 2 and "error[READ049]" in err and "not the one descgen generate wrote" in err
+    assert _audit(copy, "--no-waivers")[0] == 1

@@ -87,3 +87,20 @@ def test_real_arms_whose_zero_is_outside_their_limits_start_at_the_nearest_limit
         assert not j.limit.lower <= 0 <= j.limit.upper  # the case: zero is outside
         nearest = j.limit.lower if j.limit.lower > 0 else j.limit.upper
         assert values[name] == nearest
+
+
+def test_the_collision_matrix_default_state_is_the_sweeps() -> None:
+    """ "Default" pairs (in contact in the default state) describe the state the sweep starts in."""
+    from descgen.core.model import MatrixSettings
+    from descgen.physics import collision
+
+    states = (GroupState("tucked", "arm", (("wrist", 3.0),)),)
+    robot = _robot(semantic=Semantic(states=states))
+    assert collision._state_values(robot, MatrixSettings()) == state_values(robot, None)
+    assert collision._state_values(_robot(), MatrixSettings()) == ("", pytest.approx(CLAMPED))
+
+
+def test_simulate_holds_a_named_pose_with_the_others_inside_their_limits() -> None:
+    states = (GroupState("tucked", "arm", (("wrist", 3.0),)),)
+    values = pose_values(_robot(semantic=Semantic(states=states)), "tucked")
+    assert {k: values[k] for k in CLAMPED} == pytest.approx({**CLAMPED, "wrist": 3.0})

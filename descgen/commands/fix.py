@@ -42,6 +42,8 @@ class Fix:
     subject: str
     what: str
     message: str  # the finding's, to tell it from another of the same code and subject
+    target: str = ""  # CTRL063: the controller, and the parameter removed from it
+    param: str = ""
 
 
 @record
@@ -75,7 +77,9 @@ def fix_text(text: str, file: str) -> Fixed:
         for fixer in _FIXERS.get(f.code, ()):
             done = fixer(f, doc, lines, deleted)
             if done is not None:
-                fixes.append(Fix(f.code, f.subject, done, f.message))
+                dropped = _REMOVED.search(f.message) if f.code == "CTRL063" else None
+                where = (dropped["controller"], dropped["param"]) if dropped else ("", "")
+                fixes.append(Fix(f.code, f.subject, done, f.message, *where))
                 break
     if not fixes:
         return Fixed(text, text, ())
@@ -102,30 +106,50 @@ Fixer = Callable[[Finding, Document, list[str], set[int]], str | None]
 _COMMENT = re.compile(r"(^|\s)#")
 
 
-def _replace_token(lines: list[str], old: str, new: str) -> int:
-    """Every occurrence of ``old`` as a whole token outside a comment, replaced; how many."""
-    token = re.compile(rf"(?<![\w/.-]){re.escape(old)}(?![\w/.-])")
+def _replace(lines: list[str], pattern: re.Pattern[str], new: str) -> int:
+    """Every match of ``pattern`` outside a comment, its group 1 replaced by ``new``; how many."""
     n = 0
     for i, line in enumerate(lines):
         m = _COMMENT.search(line)
         code, comment = (line[: m.start()], line[m.start() :]) if m else (line, "")
-        code, k = token.subn(new, code)
+        code, k = pattern.subn(lambda g: g.group(0).replace(g.group(1), new), code)
         if k:
             lines[i] = code + comment
             n += k
     return n
 
 
+def _plugin_pattern(old: str) -> re.Pattern[str]:
+    """``old`` as a hardware plugin: a spec's ``plugin: old`` (quoted or not) or pass-through
+    XML's ``<plugin>old</plugin>``; the word elsewhere (a comment, a description) is not a plugin."""
+    token = re.escape(old)
+    return re.compile(rf"(?:\bplugin\s*:\s*[\"']?|<plugin>\s*)({token})(?=[\"']?\s*(?:$|</plugin>|[,}}\s]))")
+
+
 def _plugin(f: Finding, doc: Document, lines: list[str], deleted: set[int]) -> str | None:
     for old, new in PLUGIN_RENAMES.items():
-        if old in f.message and _replace_token(lines, old, new):
+        if old not in f.message:
+            continue
+        pattern = _plugin_pattern(old)
+        # one edit renames every block's plugin: a later block's finding is fixed by then
+        if _replace(lines, pattern, new) or not any(pattern.search(line) for line in lines):
             return f"{old} -> {new}"
     return None
 
 
 def _hw_param(f: Finding, doc: Document, lines: list[str], deleted: set[int]) -> str | None:
+    """A GenericSystem parameter under the spec's ``hardware: params:`` (the mock hardware's;
+    a vendor driver's variant may take a parameter of the same name, which is not renamed),
+    renamed where its key stands, in block or flow style."""
     for old, new in PARAM_RENAMES.items():
-        if f" sets {old}," in f.message and _replace_token(lines, old, new):
+        path = ("ros2_control", "hardware", "params", old)
+        if f" sets {old}," not in f.message or path not in doc.key_marks:
+            continue
+        line, col = doc.key_marks[path][0] - 1, doc.key_marks[path][1] - 1
+        text = lines[line]
+        at = col + 1 if text[col : col + 1] in ("'", '"') else col
+        if text[at : at + len(old)] == old:
+            lines[line] = text[:at] + new + text[at + len(old) :]
             return f"{old} -> {new}"
     return None
 
@@ -229,14 +253,27 @@ def _verify(robot: Any, before: list[Finding], text: str, file: str, fixes: Iter
     try:
         robot_after, after = _read(text, file)
     except InputError as exc:
-        raise _refused(file, f"the fixed spec does not read: {exc.findings[0].message}") from None
-    if _shape(robot) != _shape(robot_after):
-        raise _refused(file, "a fix changed a link or a joint")
+        why = next((f for f in exc.findings if f.blocks), exc.findings[0]).message
+        raise _refused(file, f"the fixed spec does not read: {why}") from None
+    removed = {(x.target, x.param) for x in fixes if x.param}
+    if _plain(_expected(robot, removed)) != _plain(_expected(robot_after, set())):
+        raise _refused(file, "a fix changed more of the robot than the names and parameters it fixes")
     gone = {(f.code, f.subject, f.message) for f in fixes}
     old = sorted((f.code, f.subject, _renamed(f.message)) for f in before if (f.code, f.subject, f.message) not in gone)
     new = sorted((f.code, f.subject, f.message) for f in after)
     if new != old:
         raise _refused(file, "the findings after the fix are not those before it less the fixed ones")
+
+
+def _mock_renamed(variants: Any) -> Any:
+    """The mock variant (GenericSystem: the spec's default hardware) renamed as the fixes rename
+    it; another variant's plugin and parameters are its vendor's, and must stay as they are."""
+    return tuple(
+        dataclasses.replace(v, plugin=_renamed(v.plugin), params=tuple((_renamed(k), x) for k, x in v.params))
+        if _renamed(v.plugin) == "mock_components/GenericSystem"
+        else v
+        for v in variants
+    )
 
 
 def _renamed(message: str) -> str:
@@ -246,10 +283,35 @@ def _renamed(message: str) -> str:
     return message
 
 
-def _shape(robot: Any) -> Any:
-    """The robot's links and joints with every source position left out (a deleted line moves
-    them): what must not change."""
-    return (_plain(robot.links), _plain(robot.joints))
+def _expected(robot: Any, removed: set[tuple[str, str]]) -> Any:
+    """The robot as the fixes should leave it, for comparison: the renames made everywhere,
+    the removed parameters gone, and what a fix may change besides (the waivers, the spec's
+    hash) set aside. Everything else must be equal, value for value."""
+    rc = robot.ros2_control
+    if rc is not None:
+        controllers = tuple(
+            dataclasses.replace(c, params=tuple(p for p in c.params if (c.name, p[0]) not in removed), marks=())
+            for c in rc.controllers
+        )
+        blocks = tuple(
+            dataclasses.replace(
+                b,
+                plugin=_renamed(b.plugin),
+                params=tuple((_renamed(k), v) for k, v in b.params),
+                variants=_mock_renamed(b.variants),
+            )
+            for b in rc.blocks
+        )
+        rc = dataclasses.replace(
+            rc,
+            plugin=_renamed(rc.plugin),
+            params=tuple((_renamed(k), v) for k, v in rc.params),
+            controllers=controllers,
+            blocks=blocks,
+            variants=_mock_renamed(rc.variants),
+        )
+    passthrough = tuple(_renamed(x) for x in robot.passthrough)
+    return dataclasses.replace(robot, ros2_control=rc, passthrough=passthrough, waivers=(), spec_hash=None)
 
 
 def _plain(value: Any) -> Any:

@@ -55,7 +55,7 @@ if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
 # (tests/test_evidence_recompute.py samples the committed example again and fails on a change)
-ALGORITHM = "descgen-collision-2"  # 2: mimic followers follow their leaders
+ALGORITHM = "descgen-collision-3"  # 2: mimic followers follow their leaders; 3: unnamed joints clamped
 # what computes the pairs: pinocchio (its distribution is "pin") with coal, and numpy's PCG64 samples
 LIBRARIES = ("pin", "coal", "numpy")
 _SAMPLERS = ("pin", "coal")  # without either, nothing here can sample
@@ -144,12 +144,17 @@ def recorded(committed_srdf: str | None) -> tuple[str, dict[str, str] | None] | 
 
 
 def _state_values(robot: Robot, settings: MatrixSettings) -> tuple[str, dict[str, float]]:
-    """The default state's name and joint values: the named one, else the first group state."""
+    """The default state's name and joint values: the named one, else the first group state;
+    every joint it does not name at zero clamped into its limits, as the sweep starts
+    (descgen/physics/start_state.py), so "Default" pairs describe the state the sweep starts in."""
+    from descgen.physics.start_state import inside_limits
+
     states = robot.semantic.states if robot.semantic else ()
     chosen = next((s for s in states if s.name == settings.default_state), None) if settings.default_state else None
     if chosen is None and settings.default_state is None and states:
         chosen = states[0]
-    return (chosen.name, dict(chosen.values)) if chosen else ("", {})
+    base = inside_limits(robot)
+    return (chosen.name, {**base, **dict(chosen.values)}) if chosen else ("", base)
 
 
 def cached(robot: Robot, committed_srdf: str | None, key: str) -> tuple[DisabledPair, ...] | None:

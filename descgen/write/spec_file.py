@@ -56,7 +56,8 @@ def write_spec(path: Path, text: str) -> None:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
-        os.chmod(tmp, public_mode())  # mkstemp's file is private; a spec is for the team and its tools
+        # mkstemp's file is private: a new spec gets what open() would give, a replaced one keeps its mode
+        os.chmod(tmp, path.stat().st_mode & 0o7777 if path.is_file() else public_mode())
         refuse_unsafe_output(path)  # swapped in while the spec was written
         os.replace(tmp, path)
     except BaseException:

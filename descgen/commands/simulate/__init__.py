@@ -84,15 +84,15 @@ def default_base(robot: Robot) -> str:
 
 
 def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
-    """Joint values of the named pose (a known pose, else an SRDF group state), mimic joints
-    set from their leaders; without a name the SRDF's first state, every other joint at zero
-    clamped into its limits (descgen/physics/start_state.py)."""
+    """Joint values of the named pose (a known pose, else an SRDF group state), else of the
+    SRDF's first state; every joint it does not name at zero clamped into its limits
+    (descgen/physics/start_state.py), mimic joints set from their leaders."""
     if name is None:
         values = start_state.default_state(robot)[1]
     elif (kp := next((p for p in robot.known_poses if p.name == name), None)) is not None:
-        values = dict(kp.joints)
+        values = {**start_state.inside_limits(robot), **dict(kp.joints)}
     elif robot.semantic and (st := next((s for s in robot.semantic.states if s.name == name), None)) is not None:
-        values = dict(st.values)
+        values = {**start_state.inside_limits(robot), **dict(st.values)}
     else:
         names = [p.name for p in robot.known_poses] + [
             s.name for s in (robot.semantic.states if robot.semantic else ())
