@@ -452,3 +452,19 @@ def test_every_planted_fault_is_caught_on_the_example() -> None:
     results = plant_all(ROBOT)
     assert len({r.by.code for r in results if r.by}) > 10
     assert all(r.caught for r in results if r.applicable)
+
+
+def test_a_joint_already_unpublished_is_not_where_the_fault_is_planted() -> None:
+    """create3's wheel-drop joints have no state interface (FRAME002 on the description itself):
+    removing a state interface there catches nothing new. The fault goes to a joint whose only
+    feed is its position state interface, and FRAME002 catches it."""
+    from descgen.commands.faults import CATALOGUE
+
+    rc = ROBOT.ros2_control
+    assert rc is not None
+    last = rc.joints[-1].name
+    joints = tuple(dataclasses.replace(cj, state=()) if cj.name == last else cj for cj in rc.joints)
+    unpublished = dataclasses.replace(ROBOT, ros2_control=dataclasses.replace(rc, joints=joints))
+    assert any(f.code == "FRAME002" and f.subject == f"joint:{last}" for f in run(unpublished))
+    (result,) = plant_all(unpublished, tuple(f for f in CATALOGUE if f.name == "joint-without-state"))
+    assert result.caught and last not in result.planted, result.planted

@@ -4,6 +4,7 @@ control` that must not overwrite the committed evidence."""
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import shutil
 from pathlib import Path
@@ -257,3 +258,33 @@ def test_a_robot_without_a_control_run_still_gets_its_page(tmp_path: Path) -> No
         assert "descgen control SPEC --trajectory" in text
     assert "**Verdict: FAIL**" not in page
     assert cli("check", tmp_path / SPEC).returncode == 0  # the page is current as written
+
+
+def _story_with(monkeypatch: pytest.MonkeyPatch, story_caught: bool, catalogue_missed: bool) -> str:
+    from descgen.audit.spec import load_spec
+    from descgen.commands import faults
+
+    spec = ROOT / SPEC
+    robot = load_spec(spec).robot
+    real = faults.plant_all(robot)
+    assert all(r.caught for r in real if r.applicable)  # the example: every fault caught
+    fake = [
+        dataclasses.replace(r, caught=False, by=None) if catalogue_missed and i == 0 else r for i, r in enumerate(real)
+    ]
+    monkeypatch.setattr(faults, "plant_all", lambda robot: fake)
+    if not story_caught:
+        story = evidence_page.field_faults(spec.read_text(), SPEC)
+        missed = [dataclasses.replace(c, by=None) if i == 0 else c for i, c in enumerate(story)]
+        monkeypatch.setattr(evidence_page, "field_faults", lambda text, shown: missed)
+    return "\n".join(evidence_page._field_story(spec, SPEC, robot))
+
+
+def test_a_fault_the_catalogue_misses_is_a_blind_spot_not_a_failed_page(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A joint no known pose moves cannot show a wrong axis (kuka's base joint, imported with its
+    SRDF's states): the page says so and is still written; a story fault missed still FAILs it."""
+    spots = _story_with(monkeypatch, story_caught=True, catalogue_missed=True)
+    assert "**Verdict: BLIND SPOTS**" in spots and not evidence_page.failed_verdicts(spots)
+    monkeypatch.undo()
+    assert evidence_page.failed_verdicts(_story_with(monkeypatch, story_caught=False, catalogue_missed=True))
+    monkeypatch.undo()
+    assert "**Verdict: PASS**" in _story_with(monkeypatch, story_caught=True, catalogue_missed=False)

@@ -417,6 +417,17 @@ def joint_without_state(robot: Robot) -> Planted:
             f"ros2_control block without joint {victim} (added; the description had none)",
             (f"joint:{victim}",),
         )
+    # a joint whose only feed is its position state interface: removing it leaves the joint
+    # unpublished (a joint already unpublished, a FRAME002 of the description, catches nothing new)
+    declared = {n for src in robot.joint_state_sources for n in (src.joints or [*movable, victim])}
+    fed = [
+        cj.name
+        for cj in rc.joints
+        if cj.name in driven and cj.name not in declared and any(i.name == "position" for i in cj.state)
+    ]
+    if not fed:
+        return None
+    victim = fed[-1]
     joints = tuple(
         replace(cj, state=tuple(i for i in cj.state if i.name != "position")) if cj.name == victim else cj
         for cj in rc.joints
