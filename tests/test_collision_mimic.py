@@ -105,13 +105,16 @@ def test_follower_that_keeps_its_distance_is_never() -> None:
     assert _reason(_urdf(CARRIAGES, FINGERS, mimic=False)) == "Default"
 
 
-def test_follower_that_always_meets_its_leader_is_always() -> None:
+def test_follower_that_always_meets_its_leader_is_default_then_always() -> None:
+    """The leader's stroke (41..50 mm) excludes zero, so MoveIt's default state puts it in the
+    middle (45.5 mm; moveit_core's getVariableDefaultPositions), where the jaws touch: the Setup
+    Assistant marks such a pair Default, before it samples. Over every sample they touch too."""
     urdf = _urdf(JAWS, FINGERS)
     for ql in np.linspace(0.041, 0.05, 10):
         assert _pin_collides(urdf, {"left_joint": ql, "right_joint": 2 * ql - 0.04})
-    assert not _pin_collides(urdf, {"left_joint": 0.0, "right_joint": -0.04})  # the default state
+    assert _pin_collides(urdf, {"left_joint": 0.0455, "right_joint": 0.051})  # the default state
     assert not _pin_collides(urdf, {"left_joint": 0.041, "right_joint": 0.0})  # allowed on its own
-    assert _reason(urdf) == "Always"
+    assert _reason(urdf) == "Default"
     # sampled on its own the pair collides sometimes: no reason at all (MoveIt keeps checking it)
     assert _reason(_urdf(JAWS, FINGERS, mimic=False)) is None
 

@@ -1,6 +1,8 @@
-"""The state sweep and simulate start a robot in when none is named (descgen/physics/start_state.py):
-inside every joint's limits, the SRDF's first state where there is one; and the floor under a
-wheeled base. Hand values on small robots, and real arms whose zero is outside their limits."""
+"""The state sweep, simulate and the collision matrix start a robot in when none is named
+(descgen/physics/start_state.py): inside every joint's limits at MoveIt's default position (zero,
+or the middle of limits that exclude it: moveit_core's getVariableDefaultPositions), the SRDF's
+first state where there is one; and the floor under a wheeled base. Hand values on small robots,
+and real arms whose zero is outside their limits."""
 
 from __future__ import annotations
 
@@ -33,15 +35,16 @@ def _robot(**more: object) -> Robot:
     return Robot("r", links, joints, **more)  # type: ignore[arg-type]
 
 
-CLAMPED = {"wrist": 10 * DEG, "finger": 0.005, "elbow": 0.0, "below": -0.5}
+# MoveIt's default: zero where the limits hold it (elbow), else their middle
+CLAMPED = {"wrist": 180 * DEG, "finger": 0.0225, "elbow": 0.0, "below": -1.25}
 
 
-def test_every_joint_starts_at_zero_clamped_into_its_limits() -> None:
+def test_every_joint_starts_at_moveits_default_position() -> None:
     assert start_state.inside_limits(_robot()) == pytest.approx(CLAMPED)
     assert start_state.default_state(_robot()) == ("", pytest.approx(CLAMPED))
 
 
-def test_the_srdf_first_state_is_taken_and_the_rest_clamped() -> None:
+def test_the_srdf_first_state_is_taken_and_the_rest_at_their_default() -> None:
     states = (GroupState("ready", "arm", (("elbow", 1.5),)), GroupState("home", "arm", (("elbow", 0.2),)))
     name, values = start_state.default_state(_robot(semantic=Semantic(states=states)))
     assert name == "ready" and values == pytest.approx({**CLAMPED, "elbow": 1.5})
@@ -75,7 +78,7 @@ def test_a_wheeled_base_stands_on_the_floor() -> None:
         ("panda_description/urdf/panda_collision.urdf", ["panda_joint4"]),
     ],
 )
-def test_real_arms_whose_zero_is_outside_their_limits_start_at_the_nearest_limit(urdf: str, joints: list[str]) -> None:
+def test_real_arms_whose_zero_is_outside_their_limits_start_in_the_middle(urdf: str, joints: list[str]) -> None:
     root = share()
     if root is None:
         pytest.fail("example-robot-data is not installed (the test extra installs it)")
@@ -85,22 +88,4 @@ def test_real_arms_whose_zero_is_outside_their_limits_start_at_the_nearest_limit
         (j,) = [j for j in robot.joints if j.name == name]
         assert j.limit is not None and j.limit.lower is not None and j.limit.upper is not None
         assert not j.limit.lower <= 0 <= j.limit.upper  # the case: zero is outside
-        nearest = j.limit.lower if j.limit.lower > 0 else j.limit.upper
-        assert values[name] == nearest
-
-
-def test_the_collision_matrix_default_state_is_the_sweeps() -> None:
-    """ "Default" pairs (in contact in the default state) describe the state the sweep starts in."""
-    from descgen.core.model import MatrixSettings
-    from descgen.physics import collision
-
-    states = (GroupState("tucked", "arm", (("wrist", 3.0),)),)
-    robot = _robot(semantic=Semantic(states=states))
-    assert collision._state_values(robot, MatrixSettings()) == state_values(robot, None)
-    assert collision._state_values(_robot(), MatrixSettings()) == ("", pytest.approx(CLAMPED))
-
-
-def test_simulate_holds_a_named_pose_with_the_others_inside_their_limits() -> None:
-    states = (GroupState("tucked", "arm", (("wrist", 3.0),)),)
-    values = pose_values(_robot(semantic=Semantic(states=states)), "tucked")
-    assert {k: values[k] for k in CLAMPED} == pytest.approx({**CLAMPED, "wrist": 3.0})
+        assert values[name] == pytest.approx((j.limit.lower + j.limit.upper) / 2)

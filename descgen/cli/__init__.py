@@ -754,8 +754,8 @@ def parser() -> argparse.ArgumentParser:
     )
     si.add_argument(
         "--pose",
-        help="known pose or SRDF group state to hold (default: the SRDF's first state, every other joint at zero "
-        "clamped into its limits)",
+        help="known pose or SRDF group state to hold (default: the SRDF's first state; every joint a state does not "
+        "name at MoveIt's default position: zero, or the middle of limits that exclude it)",
     )
     si.add_argument(
         "--base",
@@ -772,7 +772,8 @@ def parser() -> argparse.ArgumentParser:
     sw.add_argument(
         "--state",
         help="group state or known pose the other joints hold (default: the collision matrix's state, else the "
-        "SRDF's first state; every other joint at zero clamped into its limits)",
+        "SRDF's first state; every other joint at MoveIt's default position: zero, or the middle of limits that "
+        "exclude it)",
     )
     sw.add_argument(
         "--steps", type=types.sweep_steps, default=36, help="steps per joint, both limits included (default 36)"

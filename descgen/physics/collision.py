@@ -55,7 +55,7 @@ if TYPE_CHECKING:  # numpy is imported where the sampling needs it: check reuses
 
 # bump when the way pairs are computed changes: a cached matrix is then recomputed
 # (tests/test_evidence_recompute.py samples the committed example again and fails on a change)
-ALGORITHM = "descgen-collision-3"  # 2: mimic followers follow their leaders; 3: unnamed joints clamped
+ALGORITHM = "descgen-collision-3"  # 2: mimic followers follow their leaders; 3: unnamed joints at MoveIt's default
 # what computes the pairs: pinocchio (its distribution is "pin") with coal, and numpy's PCG64 samples
 LIBRARIES = ("pin", "coal", "numpy")
 _SAMPLERS = ("pin", "coal")  # without either, nothing here can sample
@@ -145,8 +145,9 @@ def recorded(committed_srdf: str | None) -> tuple[str, dict[str, str] | None] | 
 
 def _state_values(robot: Robot, settings: MatrixSettings) -> tuple[str, dict[str, float]]:
     """The default state's name and joint values: the named one, else the first group state;
-    every joint it does not name at zero clamped into its limits, as the sweep starts
-    (descgen/physics/start_state.py), so "Default" pairs describe the state the sweep starts in."""
+    every joint it does not name at MoveIt's default position (zero, or the middle of limits that
+    exclude it), as the sweep starts (descgen/physics/start_state.py): "Default" pairs describe the
+    state the sweep starts in, and the Setup Assistant's default state."""
     from descgen.physics.start_state import inside_limits
 
     states = robot.semantic.states if robot.semantic else ()

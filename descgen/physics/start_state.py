@@ -1,10 +1,14 @@
-"""The state a command starts a robot in when none is named (``sweep``, ``simulate``): inside
-every joint's limits. "Every joint at zero" is outside the limits of many real arms (a wrist
-whose range is 10 to 350 degrees, a gripper that opens from 5 mm), and a sweep or a simulation
-started there reports collisions and forces no real robot can have.
+"""The state a command starts a robot in when none is named (``sweep``, ``simulate``, the
+collision matrix's default state): inside every joint's limits. "Every joint at zero" is outside
+the limits of many real arms (a wrist whose range is 10 to 350 degrees, a gripper that opens from
+5 mm), and a sweep or a simulation started there reports collisions and forces no real robot can
+have.
 
 The SRDF's first group state is taken (the Setup Assistant's "home" or "ready", what a MoveIt
-demo starts at); every joint it does not name is at zero clamped into its limits.
+demo starts at); every joint it does not name is at MoveIt's default position: zero when the
+limits hold it, else the middle of the limits (moveit_core RevoluteJointModel and
+PrismaticJointModel ``getVariableDefaultPositions``, what ``RobotState::setToDefaultValues`` and
+so the Setup Assistant's default state use).
 """
 
 from __future__ import annotations
@@ -24,17 +28,17 @@ WHEELED_BASE_CONTROLLERS = frozenset(
 )
 
 
-def clamped_zero(j: Joint) -> float:
-    """Zero, or the limit nearest to it when zero is outside [lower, upper]."""
+def default_position(j: Joint) -> float:
+    """MoveIt's default position of a joint: zero when [lower, upper] holds it, else the middle."""
     lm = j.limit
     if j.type not in WITH_LIMITS or lm is None or lm.lower is None or lm.upper is None or lm.lower > lm.upper:
         return 0.0
-    return float(min(max(0.0, lm.lower), lm.upper))
+    return 0.0 if lm.lower <= 0.0 <= lm.upper else float((lm.lower + lm.upper) / 2)
 
 
 def inside_limits(robot: Robot) -> dict[str, float]:
-    """Every joint with limits at zero clamped into them."""
-    return {j.name: clamped_zero(j) for j in robot.joints if j.type in WITH_LIMITS}
+    """Every joint with limits at MoveIt's default position."""
+    return {j.name: default_position(j) for j in robot.joints if j.type in WITH_LIMITS}
 
 
 def default_state(robot: Robot) -> tuple[str, dict[str, float]]:

@@ -187,7 +187,7 @@ def computed(robot: Robot) -> dict[str, Any]:
     # an HTML comment ends at "--": link names may hold "-", so JSON escapes every one
     data = json.dumps(runs, separators=(",", ":")).replace("-", "\\u002d")
     return {
-        "state": sw.state or "all joints at zero, clamped into their limits",
+        "state": sw.state or "all joints at MoveIt's default (zero, or the middle of limits that exclude it)",
         "steps": sw.steps,
         "padding": num(sw.padding),
         "disabled": sw.disabled,

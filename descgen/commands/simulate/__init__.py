@@ -40,7 +40,7 @@ _NV = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 
 @dataclass(frozen=True)
 class Settings:
     seconds: float = DEFAULT_SECONDS
-    pose: str | None = None  # None: the SRDF's first state, others at zero clamped into their limits
+    pose: str | None = None  # None: the SRDF's first state, others at MoveIt's default position
     base: str | None = None  # None: floor for a mobile robot, else fixed (see default_base)
     gear: float = 1.0  # planted faults only
     damping: float | None = None  # planted faults only: the servos' kv instead of the default
@@ -85,8 +85,9 @@ def default_base(robot: Robot) -> str:
 
 def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
     """Joint values of the named pose (a known pose, else an SRDF group state), else of the
-    SRDF's first state; every joint it does not name at zero clamped into its limits
-    (descgen/physics/start_state.py), mimic joints set from their leaders."""
+    SRDF's first state; every joint it does not name at MoveIt's default position (zero, or the
+    middle of limits that exclude it: descgen/physics/start_state.py), mimic joints set from their
+    leaders."""
     if name is None:
         values = start_state.default_state(robot)[1]
     elif (kp := next((p for p in robot.known_poses if p.name == name), None)) is not None:
@@ -186,7 +187,7 @@ def simulate(robot: Robot, settings: Settings) -> Outcome:
             gravity.add_floor(spec, root)
 
     compiled = compile_robot(robot, emit, customise)
-    held_at = settings.pose or start_state.default_state(robot)[0] or "zero, clamped into the limits"
+    held_at = settings.pose or start_state.default_state(robot)[0] or "MoveIt's default position"
     report: dict[str, Any] = {"base": base, "pose": held_at, "seconds": settings.seconds}
     if compiled.spec is None:
         return Outcome(compiled.findings, report | {"compiled": False})

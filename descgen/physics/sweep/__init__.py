@@ -94,8 +94,9 @@ def finding(code: str, message: str, hint: str, subject: str = "", where: Where 
 def state_values(robot: Robot, name: str | None) -> tuple[str, dict[str, float]]:
     """The state's name and joint values: ``name`` (a group state, else a known pose), else
     the state the collision matrix used, else the SRDF's first state, else "" (no state); every
-    joint the state does not name at zero clamped into its limits (descgen/physics/start_state.py:
-    zero is outside many real joints' limits, and a sweep from there finds collisions no robot has)."""
+    joint the state does not name at MoveIt's default position (zero, or the middle of limits that
+    exclude it: descgen/physics/start_state.py; zero is outside many real joints' limits, and a
+    sweep from there finds collisions no robot has)."""
     sem = robot.semantic
     if name is None:
         if sem is not None and sem.matrix is not None:
@@ -271,7 +272,7 @@ def findings(sw: Sweep) -> list[Finding]:
     """What the sweep found, as findings (the report says the rest)."""
     out: list[Finding] = []
     robot = sw.robot
-    at = f" (others at state {sw.state})" if sw.state else " (others at zero, clamped into their limits)"
+    at = f" (others at state {sw.state})" if sw.state else " (others at MoveIt's default position)"
     if sw.too_large:
         return [
             finding(
@@ -404,7 +405,7 @@ def as_dict(sw: Sweep) -> dict[str, Any]:
 
 def text(sw: Sweep) -> str:
     """The sweep for a terminal: per joint its direction, what moves and what collides."""
-    state = f"state {sw.state}" if sw.state else "every joint at zero, clamped into its limits"
+    state = f"state {sw.state}" if sw.state else "every joint at MoveIt's default position"
     lines = [
         f"{sw.robot.name}: each joint through its range, the others at {state} ({sw.steps} steps; "
         f"padding {sw.padding * 1000:g} mm; {sw.disabled} pairs disabled by {sw.disabled_by})"
