@@ -25,6 +25,7 @@ from pathlib import Path
 
 import pytest
 
+from descgen.commands import evidence_page
 from descgen.infra import evidence_hash
 from tests.helpers import ROOT
 
@@ -143,7 +144,7 @@ def test_a_behaviour_change_is_caught_by_recomputing_and_by_its_bump(tmp_path: P
     stale = "error[GEN080]: evidence/README.md is stale"
     result, printed = _check(project, recompute=True)
     assert result["code"] == 1 and stale in printed, printed[-4000:]
-    _edit(page, "\nFORMAT = 1\n", "\nFORMAT = 2\n")
+    _edit(page, f"\nFORMAT = {evidence_page.FORMAT}\n", f"\nFORMAT = {evidence_page.FORMAT + 1}\n")
     result, printed = _check(project, recompute=False)
     assert result["code"] == 1 and stale in printed, printed[-4000:]
     assert result["computed"] == ["page"]  # the key named the new format: built again, and compared

@@ -44,7 +44,8 @@ _NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg")
 _TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Jinja2", "trimesh")
 # descgen's part in the page's key: bump when what the page says of the same inputs changes
 # (a section, a sentence, a proof it runs); tests/test_evidence_recompute.py fails until then
-FORMAT = 2  # 2: sections 6-7 not applicable without a control run, BLIND SPOTS, cells escaped, both packages counted
+# 2: sections 6-7 not applicable without a control run, BLIND SPOTS, cells escaped, both packages counted
+FORMAT = 2
 TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
 
 
