@@ -417,6 +417,52 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return exit_code(found, strict=args.strict)
 
 
+def _cmd_import_calibration(args: argparse.Namespace) -> int:
+    """A calibration file merged into the spec's calibration: (descgen/commands/calibration_import.py),
+    as a diff on stdout; written unless --dry-run."""
+    from descgen.commands.calibration_import import import_file
+
+    done = import_file(
+        Path(args.spec),
+        Path(args.file),
+        args.format,
+        write=not args.dry_run,
+        source=args.source,
+        prefix=args.prefix,
+        sensor=args.sensor,
+        date=args.date,
+    )
+    sys.stdout.write(done.diff(args.spec))
+    for line in done.entries:
+        print(f"{args.spec}: {line}", file=sys.stderr)
+    state = "would be imported (--dry-run: nothing written)" if args.dry_run else "imported"
+    print(f"{args.spec}: {len(done.entries)} calibration value(s) {state} from {args.file}", file=sys.stderr)
+    return EXIT_OK
+
+
+def _cmd_drift(args: argparse.Namespace) -> int:
+    """The model against a recording of the running robot (descgen/commands/drift.py)."""
+    from descgen.audit.spec import load_spec
+    from descgen.commands.drift import drift, text
+
+    loaded = load_spec(args.spec, package_paths=_packages(args))
+    result = drift(
+        loaded.robot,
+        args.frame,
+        base=args.base,
+        recording=args.recording,
+        pose_topic=args.pose_topic,
+        samples=args.samples,
+        parameters=tuple(p.strip() for p in (args.parameters or "").split(",") if p.strip()),
+        tolerance_m=args.tolerance,
+    )
+    if args.format == "json":
+        sys.stdout.write(json.dumps(result, indent=2) + "\n")
+    else:
+        sys.stdout.write(text(result))
+    return 1 if result["drifted"] else EXIT_OK
+
+
 def _cmd_fix(args: argparse.Namespace) -> int:
     """The safe fixes of each spec (descgen/commands/fix.py), as a diff on stdout; written
     unless --dry-run."""
@@ -812,6 +858,44 @@ def parser() -> argparse.ArgumentParser:
     fx.add_argument("spec", nargs="+")
     fx.add_argument("--dry-run", action="store_true", help="print the diff, write nothing")
     fx.set_defaults(fn=_cmd_fix)
+
+    dr = sub.add_parser(
+        "drift",
+        help="the model against what the running robot reports: residuals of a frame's measured pose, when they "
+        "changed, and the calibration parameters that explain them",
+    )
+    dr.add_argument("spec")
+    src = dr.add_mutually_exclusive_group(required=True)
+    src.add_argument("--recording", type=types.path, help="a rosbag2 recording with /joint_states and --pose-topic")
+    src.add_argument("--samples", type=types.path, help="a CSV: time, one column per joint, x,y,z[,qx,qy,qz,qw]")
+    dr.add_argument("--pose-topic", help="the measured pose (PoseStamped or TransformStamped) in the recording")
+    dr.add_argument("--frame", required=True, help="the link whose pose was measured")
+    dr.add_argument("--base", help="the link the pose is measured in (default: the pose's frame_id, else the root)")
+    dr.add_argument("--parameters", help="comma-separated patterns of the parameters to fit, e.g. 'joint:*:offset'")
+    dr.add_argument(
+        "--tolerance",
+        type=types.Length("--tolerance"),
+        default=0.001,
+        help="the 95th percentile of the residual that counts as drift (default 1 mm; exit 1 beyond it)",
+    )
+    dr.add_argument("--format", choices=("text", "json"), default="text")
+    package_path(dr)
+    dr.set_defaults(fn=_cmd_drift)
+
+    ic = sub.add_parser(
+        "import-calibration",
+        help="merge a calibration file (UR kinematics YAML, easy_handeye2 result, CSV of joint offsets) into a "
+        "spec's calibration:, with its provenance, and print the change as a diff",
+    )
+    ic.add_argument("spec")
+    ic.add_argument("file")
+    ic.add_argument("--format", choices=("ur", "handeye", "csv"), required=True, help="the file's format")
+    ic.add_argument("--source", type=types.name, help="the name the entries cite in calibration.sources")
+    ic.add_argument("--prefix", default="", type=types.prefix, help="prefix of the spec's joint and frame names")
+    ic.add_argument("--sensor", type=types.name, help="handeye: the spec's sensor the result mounts")
+    ic.add_argument("--date", type=types.date, help="when the calibration was measured (YYYY-MM-DD)")
+    ic.add_argument("--dry-run", action="store_true", help="print the diff, write nothing")
+    ic.set_defaults(fn=_cmd_import_calibration)
 
     s = sub.add_parser("schema", help="print the JSON Schema of the spec")
     s.set_defaults(fn=_cmd_schema)

@@ -11,6 +11,8 @@ documents. Durations go through the spec's quantity parser (``units.duration``).
 from __future__ import annotations
 
 import argparse
+import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -221,3 +223,52 @@ def sweep_steps(text: str) -> int:
     if not 1 <= n <= 3600:
         raise argparse.ArgumentTypeError(f"{n} is not between 1 and 3600")
     return n
+
+
+_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,127}$")
+_PREFIX = re.compile(r"^[A-Za-z0-9_./-]{0,64}$")
+_DATE = re.compile(r"^\d{4}-\d{2}-\d{2}$")
+
+
+def name(text: str) -> str:
+    """A plain identifier (a calibration source, a sensor of the spec)."""
+    if not _NAME.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"{text[:40]!a} is not a name (letters, digits and _, e.g. ur_factory)")
+    return text
+
+
+def prefix(text: str) -> str:
+    """A joint and frame name prefix (``left_``): what names may start with."""
+    if not _PREFIX.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"{text[:40]!a} is not a name prefix (letters, digits, _ . / -)")
+    return text
+
+
+def date(text: str) -> str:
+    """A calendar date, YYYY-MM-DD."""
+    import datetime
+
+    if not _DATE.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"{text[:40]!a} is not a date YYYY-MM-DD")
+    try:
+        datetime.date.fromisoformat(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!a} is not a calendar date") from None
+    return text
+
+
+class Length:
+    """A length option with a unit (``1 mm``, ``0.5 in``), in metres; positive and at most 1 m."""
+
+    def __init__(self, option: str) -> None:
+        self.option = option
+        self.__name__ = "length"
+
+    def __call__(self, text: str) -> float:
+        try:
+            value = units.to_si(text, "length")
+        except units.QuantityError as exc:
+            raise OptionError(raisable(exc.code), f"{self.option}: {exc.message}", exc.hint) from None
+        if not 0 < value <= 1.0 or not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{self.option} {text[:40]!a} is not between 0 and 1 m")
+        return value

@@ -37,6 +37,38 @@ BASE003 = declare(
     """Nothing is written; the audit's findings are printed as usual. Name a writable file.""",
 )
 
+CAL010 = declare(
+    "CAL010",
+    "calibration-file-unreadable",
+    "error",
+    "A calibration file given to import-calibration cannot be read in the format named (missing, too large, not "
+    "YAML or CSV, or a key, column or number the format requires is missing or not finite).",
+    """A calibration read partly, or with a value guessed, would be applied to the robot as if measured. The
+      message names the key, column or row; the formats are described in docs/calibration.md.""",
+)
+
+CAL011 = declare(
+    "CAL011",
+    "calibration-target-missing",
+    "error",
+    "A calibration file names a joint, sensor or frame the spec does not have (after the prefix), or a hand-eye "
+    "result's frames are joined by a joint that moves.",
+    """Each value is applied to the spec's own element; one that matches nothing would be lost, and a hand-eye
+      transform is turned into the sensor's mount only through fixed joints. Give --prefix, --sensor, or fix the
+      spec's names.""",
+)
+
+CAL012 = declare(
+    "CAL012",
+    "drift-input-unusable",
+    "error",
+    "descgen drift cannot use its input: the recording or CSV is unreadable, lacks a topic, column or joint the "
+    "frame's chain needs, or has too few samples to fit.",
+    """The residual and the identification need, for each sample, every moving joint between the base and the
+      frame, and the frame's measured position. The message names what is missing.""",
+)
+
+
 FIX001 = declare(
     "FIX001",
     "fix-not-safe",

@@ -10,6 +10,45 @@ from descgen.codes.registry import Stage
 declare = Stage("spec")
 
 
+CAL001 = declare(
+    "CAL001",
+    "calibration-source-unknown",
+    "error",
+    "A calibration entry cites a source that calibration.sources does not name.",
+    """Every calibrated value keeps its provenance (the method, tool, file and date of the measurement); an entry
+      citing a name that is not in calibration.sources has none. Add the source, or cite one that exists.""",
+)
+
+CAL002 = declare(
+    "CAL002",
+    "calibration-target-unknown",
+    "error",
+    "A calibration entry names a joint or sensor the robot does not have, or calibrates one joint twice.",
+    """A correction for a joint that is not there would be silently unused (a renamed joint, a prefix), and a
+      sensor's mount given both under sensors: and under joints: has two values. Name an existing joint or sensor,
+      once.""",
+)
+
+CAL003 = declare(
+    "CAL003",
+    "calibration-offset-without-motion",
+    "error",
+    "A zero offset is given for a joint that does not move about or along one axis (fixed, floating, planar).",
+    """A zero offset shifts what a revolute, continuous or prismatic joint reports; a joint without one axis of
+      motion reports nothing to shift. Correct its origin instead.""",
+)
+
+CAL004 = declare(
+    "CAL004",
+    "calibration-correction-large",
+    "warning",
+    "A calibration moves a frame by more than 20 mm or turns it by more than 5 degrees from the nominal model.",
+    """Calibration corrects what machining and assembly leave: fractions of a millimetre or a degree on an arm, a
+      few millimetres on a sensor mount. A larger correction is usually a unit slip, a result pasted into the wrong
+      frame, or a nominal model that is wrong; check the nominal value first.""",
+)
+
+
 CTRL048 = declare(
     "CTRL048",
     "bad-calibrated-parameter",

@@ -20,6 +20,7 @@ tests/test_evidence_recompute.py (the page built again and compared) until FORMA
 from __future__ import annotations
 
 import json
+import math
 import re
 import tempfile
 from collections.abc import Callable, Sequence
@@ -182,6 +183,56 @@ def _waivers(robot: Any) -> list[str]:
     return lines
 
 
+def _calibration(robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
+    """The calibration layer beside the nominal model: each calibrated joint's nominal and
+    calibrated origin, how far the correction moves and turns its child frame, and the source."""
+    if not robot.calibration:
+        return []
+    from descgen.core import display
+    from descgen.physics.calibration import correction_size
+
+    md = _md()
+    sources = {s.name: s for s in robot.calibration_sources}
+    lines = [
+        "## 11. Calibration",
+        "",
+        f"The robot as measured, a layer on the nominal model: {_link(package, 'config/calibration/default.yaml')} "
+        f"(the Xacro's `calibration:=`; {_link(package, 'config/calibration/nominal.yaml')} gives the nominal model).",
+        "",
+        "| joint | nominal xyz (mm), rpy (deg) | calibrated xyz (mm), rpy (deg) | zero offset | moves | turns "
+        "| source |",
+        "|---|---|---|---|---|---|---|",
+    ]
+
+    def shown(p: Any) -> str:
+        return f"({display.mm(p.xyz, 3)}), ({', '.join(f'{math.degrees(a):.4f}' for a in p.rpy)})"
+
+    for e in robot.calibration:
+        j = robot.joint(e.joint)
+        shift, turn = correction_size(j, e) if j is not None else (0.0, 0.0)
+        offset = "" if not e.offset else (j.show(e.offset) if j is not None else f"{e.offset:.6g}")
+        src = sources.get(e.source)
+        cite = e.source + (f": {src.method}" if src else "") + (f", {src.date}" if src and src.date else "")
+        who = e.joint + (f" (sensor {e.sensor})" if e.sensor else "")
+        lines.append(
+            f"| {md.mdcode(who)} | {shown(e.nominal)} | {shown(e.calibrated)} | {md.mdcell(offset)} | "
+            f"{shift * 1000:.3f} mm | {math.degrees(turn):.4f} deg | {md.mdcell(cite)} |"
+        )
+    done = dict(proofs or ())
+    name = "xacro calibration:=nominal.yaml expands to the nominal model"
+    ok = not [f for f in done.get(name, ()) if f.blocks]
+    lines += [
+        "",
+        _verdict(
+            ok,
+            f"{len(robot.calibration)} calibrated joint(s), each citing its source; the Xacro without "
+            "the layer expands to the nominal model",
+        ),
+        "",
+    ]
+    return lines
+
+
 def _not_applicable(why: str) -> str:
     """A section that does not apply to this robot: neither a pass nor a failure of the page."""
     return f"**Verdict: NOT APPLICABLE**: {why}"
@@ -194,7 +245,7 @@ Proofs = Sequence[tuple[str, Sequence[Finding]]]
 
 
 def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
-    from descgen.prove import CHECKS
+    from descgen.prove import CHECKS, xacro_calibration_nominal
 
     # the results plan() already has (the same checks on the same files), else run them here
     done = dict(proofs) if proofs is not None else {name: check(files, robot, package) for name, check in CHECKS}
@@ -212,7 +263,9 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
         "|---|---|",
     ]
     ok = True
-    for name, _ in CHECKS:
+    for name, check in CHECKS:
+        if check is xacro_calibration_nominal and not robot.calibration:
+            continue  # nothing to take off: the row would pass on nothing
         found = done[name]
         bad = sorted({f.code for f in found if f.severity in ("error", "warning")})
         notes = sorted({f.code for f in found if f.severity == "info"})
@@ -491,6 +544,7 @@ def build(
         *_transcript(spec, shown, check_out, n, simulate, robot, package_paths),
         *_field_story(spec, shown, robot),
         *_waivers(robot),
+        *_calibration(robot, package, proofs),
     ]
     page = _relative("\n".join(parts).rstrip("\n") + "\n", package)
     return page if key is None else page + f"<!-- {evidence_hash.stamp(key, comparable(page))} -->\n"

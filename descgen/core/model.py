@@ -463,6 +463,8 @@ class KnownPose:
     where: Where = NOWHERE
     # planar/floating virtual joints (as GroupState.multi): kept for the SRDF, outside the URDF's FK
     multi: tuple[tuple[str, tuple[float, ...]], ...] = ()
+    # the positions are the nominal model's, not measured: judged without the calibration layer
+    nominal: bool = False
 
 
 @record
@@ -526,6 +528,37 @@ WAIVERS_FILE = "descgen-waivers.yaml"  # a generated package's waivers, at its r
 
 
 @record
+class CalibrationSource:
+    """Where calibration values come from (spec ``calibration.sources``)."""
+
+    name: str
+    method: str
+    tool: str | None = None
+    file: str | None = None
+    date: str | None = None
+    hash: str | None = None
+
+
+@record
+class JointCalibration:
+    """One joint of the calibration layer: the nominal origin the spec states, and the corrections
+    that give the robot as measured. ``Robot.joints`` hold the calibrated origin (descgen/physics/
+    calibration.py: calibrated_origin); this record keeps the nominal one beside it. A sensor's
+    mount is the same record for its ``<sensor>_joint``, with ``sensor`` set and the measured pose
+    as ``replaced``."""
+
+    joint: str
+    source: str
+    nominal: Pose
+    calibrated: Pose
+    offset: float = 0.0  # rad or m: the joint reports q and is at q + offset
+    dxyz: Vec3 = (0.0, 0.0, 0.0)
+    drpy: Vec3 = (0.0, 0.0, 0.0)
+    sensor: str | None = None
+    where: Where = NOWHERE
+
+
+@record
 class Waiver:
     """A finding the team accepts for now (spec ``waivers:``): its code and subject exactly as
     findings print them, and why. The finding is still reported, as waived; it fails nothing."""
@@ -573,6 +606,9 @@ class Robot:
     moveit_config: MoveItConfig | None = None
     # the spec's ``waivers:`` (descgen/audit/waivers.py); empty for a description
     waivers: tuple[Waiver, ...] = ()
+    # the spec's ``calibration:`` layer; the joints above already hold the calibrated origins
+    calibration: tuple[JointCalibration, ...] = ()
+    calibration_sources: tuple[CalibrationSource, ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

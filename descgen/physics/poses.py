@@ -12,7 +12,7 @@ from descgen.core import display
 from descgen.core.findings import Finding
 from descgen.core.model import ONE_DOF, FrameMeasurement, KnownPose, Robot, Vec3
 from descgen.core.record import record
-from descgen.physics import mimic, zero_pose
+from descgen.physics import calibration, mimic, zero_pose
 
 EPS = 1e-9  # a measurement exactly at its tolerance passes, whatever the float rounding
 
@@ -84,7 +84,7 @@ def evaluate(robot: Robot) -> list[Row]:
     rows: list[Row] = []
     root = robot.root() or ""
     for kp in robot.known_poses:
-        poses = zero_pose.forward(robot, dict(kp.joints))
+        poses = zero_pose.forward(calibration.for_pose(robot, kp), dict(kp.joints))
         for fm in kp.frames:
             t = zero_pose.relative(poses, fm.frame, fm.relative_to)
             if t is None:

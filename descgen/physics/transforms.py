@@ -52,3 +52,12 @@ def axis_angle_matrix(axis: Sequence[float], angle: float) -> Mat:
             [z * x * k - y * s, z * y * k + x * s, c + z * z * k],
         ]
     )
+
+
+def matrix_rpy(r: Mat) -> tuple[float, float, float]:
+    """URDF roll, pitch, yaw of a rotation matrix (the inverse of :func:`rpy_matrix`). At pitch
+    ±90° roll and yaw turn about one axis; roll is then 0 and yaw carries the rotation."""
+    pitch = math.atan2(-float(r[2, 0]), math.hypot(float(r[0, 0]), float(r[1, 0])))
+    if math.hypot(float(r[0, 0]), float(r[1, 0])) < 1e-12:
+        return 0.0, pitch, math.atan2(-float(r[0, 1]), float(r[1, 1]))
+    return math.atan2(float(r[2, 1]), float(r[2, 2])), pitch, math.atan2(float(r[1, 0]), float(r[0, 0]))

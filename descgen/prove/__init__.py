@@ -18,7 +18,7 @@ from descgen.prove.package import package_xml
 from descgen.prove.semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
 from descgen.prove.urdf_roundtrip import urdf_roundtrip, urdf_roundtrip_yourdfpy
 from descgen.prove.urdfdom import check_urdf, start_check_urdf
-from descgen.prove.xacro_expand import xacro_matches_urdf, xacro_variants_match
+from descgen.prove.xacro_expand import xacro_calibration_nominal, xacro_matches_urdf, xacro_variants_match
 
 __all__ = [
     "CHECKS",
@@ -35,6 +35,7 @@ __all__ = [
     "srdf_roundtrip",
     "urdf_roundtrip",
     "urdf_roundtrip_yourdfpy",
+    "xacro_calibration_nominal",
     "xacro_matches_urdf",
     "xacro_variants_match",
 ]
@@ -45,6 +46,7 @@ Check = Callable[[Files, Robot, Path], list[Finding]]
 CHECKS: list[tuple[str, Check]] = [
     ("xacro expands to the URDF", xacro_matches_urdf),
     ("xacro hardware:=gazebo|real expands to the model's variants", xacro_variants_match),
+    ("xacro calibration:=nominal.yaml expands to the nominal model", xacro_calibration_nominal),
     ("package.xml is a valid format 3 manifest", package_xml),
     ("controllers YAML names existing joints and interfaces", controllers_yaml),
     ("the URDF read back (lxml, urdfdom's rules) is the model", urdf_roundtrip),

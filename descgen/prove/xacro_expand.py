@@ -135,8 +135,10 @@ def xacro_matches_urdf(files: dict[str, str], robot: Robot, where: Path) -> list
     xacro_path = f"urdf/{robot.name}.urdf.xacro"
     urdf_path = f"urdf/{robot.name}.urdf"
     loc = Where(str(where / xacro_path))
-    try:
-        expanded = expand(files, xacro_path)
+    from descgen.render.context import package_name
+
+    try:  # laid out under the package's name: $(find <package>) reads its own files (calibration)
+        expanded = expand_with(files, xacro_path, package_name(robot), {})[0]
     except InputError as exc:  # the sandbox turns every xacro failure into one
         return [
             GEN001.finding(
@@ -240,3 +242,43 @@ def _gen001(message: str, xacro_path: str, loc: Where) -> Finding:
         "file:" + xacro_path,
         loc,
     )
+
+
+def xacro_calibration_nominal(files: dict[str, str], robot: Robot, where: Path) -> list[Finding]:
+    """``xacro ... calibration:=<nominal.yaml>`` gives the committed URDF with every calibrated
+    joint at the origin the spec states (the nominal model): the calibration is a layer that can
+    be taken off. The expectation is the URDF with those origins set from the model's layer (as
+    data), so a template that writes the layer wrongly cannot agree with itself."""
+    from descgen.render.context import package_name
+    from descgen.render.formatting import vec
+
+    if not robot.calibration:
+        return []
+    xacro_path = f"urdf/{robot.name}.urdf.xacro"
+    loc = Where(str(where / xacro_path))
+    try:  # relative to the Xacro's folder, as xacro.load_yaml resolves it
+        text, _ = expand_with(
+            files, xacro_path, package_name(robot), {"calibration": "../config/calibration/nominal.yaml"}
+        )
+    except InputError as exc:
+        why = "; ".join(f.message for f in exc.findings)
+        return [_gen001(f"xacro {xacro_path} calibration:=nominal.yaml failed: {why}", xacro_path, loc)]
+    expected = parse(files[f"urdf/{robot.name}.urdf"])
+    nominal = {e.joint: e.nominal for e in robot.calibration}
+    for joint in expected.findall("joint"):
+        pose = nominal.get(joint.get("name", ""))
+        origin = joint.find("origin")
+        if pose is not None and origin is not None:
+            origin.set("xyz", vec(pose.xyz))
+            origin.set("rpy", vec(pose.rpy))
+    diff = first_difference(parse(text), expected)
+    if diff:
+        return [
+            GEN001.finding(
+                f"xacro {xacro_path} calibration:=nominal.yaml differs from the nominal model at {diff}",
+                "the calibration layer of the Xacro disagrees with the spec; fix the URDF Xacro template",
+                "file:" + xacro_path,
+                loc,
+            )
+        ]
+    return []

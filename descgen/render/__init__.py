@@ -162,6 +162,11 @@ def outputs(robot: Robot) -> list[tuple[str, str, bool]]:
         files.append(("evidence/collision_matrix.md", "collision_matrix.md.j2", False))
         files.append(("evidence/sweep.md", "sweep.md.j2", False))  # descgen/prove/sweep.py
     files += [("evidence/frames.md", "frames.md.j2", False), ("evidence/frames.dot", "frames.dot.j2", False)]
+    if robot.calibration:  # read by the Xacro (calibration:=FILE)
+        files += [
+            ("config/calibration/default.yaml", "calibration_default.yaml.j2", False),
+            ("config/calibration/nominal.yaml", "calibration_nominal.yaml.j2", False),
+        ]
     if robot.waivers:  # read by descgen audit of the package's files (descgen/read/package_waivers.py)
         files.append((WAIVERS_FILE, "descgen-waivers.yaml.j2", False))
     return files

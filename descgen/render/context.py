@@ -16,7 +16,7 @@ from descgen.physics.poses import worst_mm
 from descgen.read.params import typed
 from descgen.render.control_blocks import control_blocks, control_depends
 from descgen.render.formatting import num, vec, xacro_text
-from descgen.render.views import Values, items
+from descgen.render.views import Values, calibration_keys, items
 from descgen.spec.passthrough import for_xacro
 
 # exec_depends of what the launch files start and what controller_manager loads
@@ -81,6 +81,36 @@ def controllers_doc(robot: Robot) -> dict[str, Any]:
 def controllers_yaml(robot: Robot) -> str:
     text = yaml.dump(controllers_doc(robot), Dumper=_Dumper, sort_keys=False, default_flow_style=False, width=100)
     return text.rstrip("\n")
+
+
+def calibration_yaml(robot: Robot, nominal: bool) -> str:
+    """config/calibration/default.yaml (the robot as measured) or nominal.yaml: the origin of
+    every calibrated joint, under the key the Xacro reads it by (views.calibration_keys), with
+    the joint's name and the provenance beside it."""
+    keys = calibration_keys(robot)
+    joints: dict[str, Any] = {}
+    for e in robot.calibration:
+        p = e.nominal if nominal else e.calibrated
+        entry: dict[str, Any] = {"joint": e.joint}
+        if not nominal:
+            entry["source"] = e.source
+            if e.sensor is not None:
+                entry["sensor"] = e.sensor
+        entry.update(zip(("x", "y", "z"), map(float, p.xyz), strict=True))
+        entry.update(zip(("roll", "pitch", "yaw"), map(float, p.rpy), strict=True))
+        joints[keys[e.joint]] = entry
+    doc: dict[str, Any] = {"joints": joints}
+    if not nominal:
+        doc["sources"] = {
+            src.name: {
+                k: v
+                for k, v in (("method", src.method), ("tool", src.tool), ("file", src.file), ("date", src.date))
+                if v is not None
+            }
+            | ({"hash": src.hash} if src.hash else {})
+            for src in robot.calibration_sources
+        }
+    return yaml.dump(doc, Dumper=_Dumper, sort_keys=False, default_flow_style=False, width=100).rstrip("\n")
 
 
 def _mm3(v: tuple[float, float, float] | None) -> str:
@@ -200,7 +230,7 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
 def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     """Context for one template family: ``xacro`` chooses property references and
     xacro-escaped free text over plain numbers and text."""
-    values = Values(xacro=xacro)
+    values = Values(xacro=xacro, calibrated=calibration_keys(robot))
     element_items, macros = items(robot, values)
     text = xacro_text if xacro else str
     materials = [
@@ -258,6 +288,9 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "view_distance": num(max(2.0, 4 * extent)),
         "view_focal_z": num(0.5),
         "waivers": robot.waivers,
+        "calibration": bool(robot.calibration),
+        "calibration_default": calibration_yaml(robot, nominal=False) if robot.calibration and not xacro else "",
+        "calibration_nominal": calibration_yaml(robot, nominal=True) if robot.calibration and not xacro else "",
         "package": {
             "name": package_name(robot),
             "version": robot.package.version,

@@ -12,6 +12,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from markupsafe import Markup
+
 from descgen.core.model import (
     NO_AXIS,
     Box,
@@ -107,6 +109,25 @@ class Values:
     xacro: bool
     props: list[Prop] = field(default_factory=list)
     _index: dict[str, Prop] = field(default_factory=dict)
+    # joint name -> its key in config/calibration/*.yaml: a calibrated joint's origin is read
+    # from the calibration file in the Xacro (calibration_keys)
+    calibrated: dict[str, str] = field(default_factory=dict)
+
+    def origin(self, j: Joint, stem: str) -> tuple[str, str]:
+        """The origin attributes of ``j``: from the calibration file when it is calibrated (the
+        Xacro), else as values or property references."""
+        key = self.calibrated.get(j.name) if self.xacro else None
+        if key is not None:
+            # the key is an identifier (calibration_keys): the expression holds no spec text, so
+            # it is written as is (Markup), not with its quotes escaped as XML entities
+            ref = f"calibration_yaml['joints']['{key}']"
+            xyz = " ".join("${" + f"{ref}['{c}']" + "}" for c in ("x", "y", "z"))
+            rpy = " ".join("${" + f"{ref}['{c}']" + "}" for c in ("roll", "pitch", "yaw"))
+            return Markup(xyz), Markup(rpy)
+        src = j.source
+        xyz = self(f"{stem}_xyz", vec(j.origin.xyz), src) if j.origin.xyz != (0.0, 0.0, 0.0) else _ZERO
+        rpy = self(f"{stem}_rpy", vec(j.origin.rpy), src) if j.origin.rpy != (0.0, 0.0, 0.0) else _ZERO
+        return xyz, rpy
 
     def __call__(self, name: str, value: str, source: str | None) -> str:
         # a property is for a measurement a reviewer checks against its source (the comment
@@ -225,11 +246,7 @@ def joint_view(
 ) -> JointView:
     stem = key or j.name
     src = j.source
-    if origin is None:
-        xyz = v(f"{stem}_xyz", vec(j.origin.xyz), src) if j.origin.xyz != (0.0, 0.0, 0.0) else _ZERO
-        rpy = v(f"{stem}_rpy", vec(j.origin.rpy), src) if j.origin.rpy != (0.0, 0.0, 0.0) else _ZERO
-    else:
-        xyz, rpy = origin
+    xyz, rpy = v.origin(j, stem) if origin is None else origin
     limit: list[tuple[str, str]] = []
     if j.limit is not None and j.type != "fixed":
         lm = j.limit
@@ -270,6 +287,22 @@ def joint_view(
     )
 
 
+def calibration_keys(robot: Robot) -> dict[str, str]:
+    """Joint name -> its key in the calibration files: a Python identifier (the key is written
+    into a xacro expression, where a joint name could be code), made unique like properties."""
+    out: dict[str, str] = {}
+    taken: set[str] = set()
+    for e in robot.calibration:
+        stem = identifier(e.joint)
+        key, k = stem, 1
+        while key in taken:
+            k += 1
+            key = f"{stem}_{k}"
+        taken.add(key)
+        out[e.joint] = key
+    return out
+
+
 def _comment(description: str | None, source: str | None) -> str | None:
     if description and source:
         return f"{description} ({source})"
@@ -293,8 +326,9 @@ def items(robot: Robot, v: Values) -> tuple[list[Item], list[PartMacro]]:
                     joint_view(j, v, name="${joint}", child="${link}", origin=("${xyz}", "${rpy}"), key=link.part),
                     v.text(link.description),
                 )
-            xyz = v(f"{j.name}_xyz", vec(j.origin.xyz), j.source)
-            rpy = v(f"{j.name}_rpy", vec(j.origin.rpy), j.source) if j.origin.rpy != (0.0, 0.0, 0.0) else _ZERO
+            xyz, rpy = v.origin(j, j.name)
+            if xyz == _ZERO:  # a part's instance states its place, even at the parent's origin
+                xyz = v(f"{j.name}_xyz", vec(j.origin.xyz), j.source)
             call = (("link", link.name), ("joint", j.name), ("xyz", xyz), ("rpy", rpy))
             out.append(
                 Item(

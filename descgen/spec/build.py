@@ -18,8 +18,8 @@ from descgen.core import model as m
 from descgen.core import units
 from descgen.core.findings import Finding, Where
 from descgen.infra.yamlsource import Document
+from descgen.spec import calibration, parts, sensors
 from descgen.spec import models as s
-from descgen.spec import parts, sensors
 from descgen.spec.convert import Converter
 from descgen.spec.joints import joint
 from descgen.spec.links import link
@@ -63,6 +63,10 @@ class Builder:
         joints += part_joints + sensor_joints
         # every joint exists now: values given per joint (poses, initial positions) take its unit
         conv.joint_types = {j.name: j.type for j in joints}
+        layer = calibration.apply(conv, spec.calibration, joints, sensor_list) if spec.calibration else None
+        if layer is not None:  # the robot as measured; the layer keeps the nominal origins
+            moved = {j.name: j for j in layer.joints}
+            joints = [moved.get(j.name, j) for j in joints]
         rc = ros2_control(conv, spec.ros2_control, {lk.name for lk in links}) if spec.ros2_control else None
         virtual = {v.name: v.type for v in spec.semantic.virtual_joints} if spec.semantic else {}
         poses = tuple(known_pose(conv, kp, ("known_poses", i), virtual) for i, kp in enumerate(spec.known_poses))
@@ -96,6 +100,8 @@ class Builder:
             waivers=tuple(
                 m.Waiver(w.code, w.subject, w.reason, conv.where(("waivers", i))) for i, w in enumerate(spec.waivers)
             ),
+            calibration=layer.calibration if layer else (),
+            calibration_sources=layer.calibration_sources if layer else (),
         )
         if rc is not None and spec.passthrough:
             # a Gazebo plugin kept in pass-through is the robot's, as in the description it came

@@ -5,6 +5,7 @@ Unknown keys are errors (``extra="forbid"``). Every model is frozen. Cross-eleme
 model in ``descgen/audit/rules``, shared with ``descgen audit``.
 """
 
+import datetime
 import math
 import re
 from typing import Annotated, Any, Literal, Self
@@ -1079,6 +1080,10 @@ class KnownPoseSpec(Base):
     SPEC010."""
     description: Text | None = None
     """A note about the pose for readers of the spec."""
+    nominal: bool = False
+    """True when the positions are the nominal model's (an import's forward kinematics, a CAD export), not measured
+    on the robot: they are checked against the model without its `calibration:` layer. Default false: measured on
+    the robot, checked against the robot as calibrated."""
 
 
 class ExternalFrameSpec(Base):
@@ -1337,6 +1342,73 @@ RobotName = Annotated[
 ]
 
 
+class CalibrationSourceSpec(Base):
+    """Where a set of calibration values comes from: the provenance every entry cites by name."""
+
+    method: Annotated[OneLine, StringConstraints(min_length=1, max_length=400)]
+    """How the values were obtained, e.g. `UR factory calibration read from the controller` or `hand-eye (Tsai)`."""
+    tool: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)] | None = None
+    """The tool that produced them, e.g. `ur_calibration`, `easy_handeye2`, `descgen drift`."""
+    file: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)] | None = None
+    """The file they were imported from, as given to `descgen import-calibration`."""
+    date: (
+        Annotated[
+            OneLine,
+            BeforeValidator(lambda v: v.isoformat() if isinstance(v, datetime.date) else v),
+            StringConstraints(min_length=1, max_length=40),
+        ]
+        | None
+    ) = None
+    """When they were measured, e.g. `2026-11-02`."""
+    hash: Annotated[OneLine, StringConstraints(min_length=1, max_length=200)] | None = None
+    """The vendor's checksum of the calibration, e.g. UR's `calib_12345...`, kept so the driver's check can be
+    traced."""
+
+
+class OriginCorrectionSpec(Base):
+    """A correction added to a joint origin's components: xyz (lengths), then roll, pitch, yaw (angles)."""
+
+    xyz: tuple[Length, Length, Length] = (ZERO, ZERO, ZERO)
+    """Added to the nominal origin's x, y, z, e.g. `[0.4 mm, 0, -0.1 mm]`."""
+    rpy: tuple[Angle, Angle, Angle] = (ZERO_ANGLE, ZERO_ANGLE, ZERO_ANGLE)
+    """Added to the nominal origin's roll, pitch, yaw, e.g. `[0, 0.02 deg, 0]`."""
+
+
+class JointCalibrationSpec(Base):
+    """A joint's calibration: its zero offset and a correction of its origin, both on top of the nominal joint."""
+
+    source: Name
+    """The name of the entry of `calibration.sources` these values come from (CAL001)."""
+    offset: Raw | None = None
+    """The joint's zero offset: the joint reports q and is at q + offset (an angle for a revolute joint, a length
+    for a prismatic one), e.g. `0.5 deg`. Written into the joint origin, as a rotation about (or a shift along) its
+    axis."""
+    origin: OriginCorrectionSpec = OriginCorrectionSpec()
+    """A correction added to the nominal origin (`xyz`, `rpy`)."""
+
+
+class SensorCalibrationSpec(Base):
+    """A sensor's measured mount (extrinsics): replaces the nominal origin of its `<name>_joint`."""
+
+    source: Name
+    """The name of the entry of `calibration.sources` these values come from (CAL001)."""
+    origin: Origin
+    """The calibrated pose of the sensor frame in the sensor's parent, e.g. from a hand-eye calibration."""
+
+
+class CalibrationSpec(Base):
+    """The robot as measured: corrections on top of the nominal model, each citing its provenance. generate writes
+    them to `config/calibration/default.yaml`, which the Xacro reads (`calibration:=FILE` picks another, e.g.
+    `config/calibration/nominal.yaml`)."""
+
+    sources: dict[Name, CalibrationSourceSpec] = {}
+    """Named provenances that entries cite: method, tool, file, date, hash."""
+    joints: dict[ElementName, JointCalibrationSpec] = {}
+    """Per joint (by name): its zero offset and origin correction."""
+    sensors: dict[Name, SensorCalibrationSpec] = {}
+    """Per sensor of `sensors:` (by name): its calibrated mount."""
+
+
 class WaiverSpec(Base):
     """A finding the team accepts for now: ``code`` and ``subject`` exactly as findings print
     them (``INER004``, ``link:finger``), and why. The finding is still reported, as waived,
@@ -1400,6 +1472,9 @@ class RobotSpec(Base):
     moveit: MoveItSpec | None = None
     """Turns on the MoveIt config package `<robot>_moveit_config`; every planning joint then needs velocity and
     acceleration limits (SPEC111, SPEC110)."""
+    calibration: CalibrationSpec | None = None
+    """The robot as measured (joint zero offsets, origin corrections, sensor mounts), each with its provenance; a
+    layer on top of the nominal model (docs/calibration.md)."""
     waivers: list[WaiverSpec] = []
     """Findings the team accepts for now, by code and subject: still reported, as waived, and failing no command; a
     waiver that matches nothing is SPEC130."""

@@ -32,7 +32,7 @@ def known_pose(
         )
         for i, f in enumerate(kp.frames)
     )
-    return m.KnownPose(kp.name, values, frames, kp.source, conv.where(path), multi)
+    return m.KnownPose(kp.name, values, frames, kp.source, conv.where(path), multi, kp.nominal)
 
 
 # MoveIt's variables of a multi-DOF joint, in order (moveit_core planar_joint_model.cpp,

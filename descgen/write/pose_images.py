@@ -20,6 +20,7 @@ from descgen.core.model import KnownPose, Robot
 from descgen.infra import keys
 from descgen.physics import poses as known_poses
 from descgen.physics import zero_pose
+from descgen.physics.calibration import for_pose
 from descgen.physics.rigid import ORIGIN, apply
 
 if TYPE_CHECKING:  # numpy only draws (with matplotlib): check rebuilds the record in plain floats
@@ -73,7 +74,7 @@ def _point(m: tuple[float, float, float]) -> tuple[float, float, float]:
 def scene(robot: Robot, kp: KnownPose) -> Scene:
     """Forward kinematics (mimic followers resolved) for one known pose, in plain floats
     (descgen/physics/zero_pose.py: check rebuilds the record without numpy's import)."""
-    poses = zero_pose.forward(robot, dict(kp.joints))
+    poses = zero_pose.forward(for_pose(robot, kp), dict(kp.joints))
     links = {name: _point(t[1]) for name, t in poses.items()}
     bones = [(j.parent, j.child) for j in robot.joints if j.child in poses and j.parent in poses]
     markers = []

@@ -86,6 +86,7 @@ def _pose(
         out["joints"] = joints
     out["frames"] = measured
     out["source"] = source
+    out["nominal"] = True  # a calibration added later moves the robot, not these model values
     return out
 
 
