@@ -6,6 +6,7 @@ for the recordings drift reads; hand-computed transforms for the hand-eye mount.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import random
@@ -247,14 +248,9 @@ def test_csv_offsets_and_handeye_mount(tmp_path: Path) -> None:
     assert ran.returncode == 0, ran.stderr[-3000:]
     model = _urdf_model(tmp_path / "gen" / "warehouse_arm_description" / "urdf" / "warehouse_arm.urdf")
     got = _transform(model, {}, "camera_optical_frame", "tool_link")
-    x, y, z, w = q
-    rot = np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
+    from scipy.spatial.transform import Rotation
+
+    rot = Rotation.from_quat(q).as_matrix()  # scipy: x, y, z, w
     assert np.allclose(got[:3, 3], [0.0254, 0.0003, 0.0402], atol=1e-12)
     assert np.allclose(got[:3, :3], rot, atol=1e-12)
 
@@ -434,3 +430,231 @@ def test_evidence_page_shows_nominal_beside_calibrated(tmp_path: Path) -> None:
     assert "| xacro calibration:=nominal.yaml expands to the nominal model | passed |" in page
     example = (ROOT / "generated" / "warehouse_arm_description" / "evidence" / "README.md").read_text()
     assert "## 11." not in example and "calibration:=" not in example
+
+
+def _drift_project(
+    tmp_path: Path, offsets: dict[str, float] | None = None, samples: str = "../data/tracker.csv"
+) -> Path:
+    """The example with CAL_BLOCK and a drift check of 300 tracker samples (0.2 mm noise) made by
+    pinocchio from the calibrated URDF, with ``offsets`` planted on top."""
+    (tmp_path / "specs").mkdir()
+    spec = tmp_path / "specs" / "wa.yaml"
+    spec.write_text(EXAMPLE.read_text() + CAL_BLOCK)
+    assert cli("generate", spec, "--out", tmp_path / "first", cwd=tmp_path).returncode == 0
+    urdf = (tmp_path / "first" / "warehouse_arm_description" / "urdf" / "warehouse_arm.urdf").read_text()
+    rec = dd.samples(urdf, "tool_link", base="arm_base_link", offsets=offsets, joints=ARM, n=300, noise_m=0.0002)
+    (tmp_path / "data").mkdir()
+    dd.write_csv(tmp_path / "data" / "tracker.csv", rec)
+    check = f"  drift:\n    samples: {samples}\n    frame: tool_link\n    base: arm_base_link\n"
+    spec.write_text(spec.read_text() + check)
+    return spec
+
+
+def test_evidence_page_plots_the_drift_samples(tmp_path: Path) -> None:
+    """report: section 11 gives the samples' residual (within the 1 mm tolerance: 0.2 mm noise) and
+    writes evidence/drift.svg, a polyline of one point per sample; check then passes, and a changed
+    sample makes both the page and the plot stale."""
+    from lxml import etree
+
+    spec = _drift_project(tmp_path)
+    assert cli("generate", spec, cwd=tmp_path).returncode == 0
+    ran = cli("report", spec, cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr[-2000:]
+    evidence = tmp_path / "generated" / "warehouse_arm_description" / "evidence"
+    page = (evidence / "README.md").read_text()
+    section = page[page.index("## 11. Calibration and drift") :]
+    assert "`tracker.csv` (300 samples)" in section and "![residual over time](drift.svg)" in section
+    median = float(re.search(r"residual: median ([0-9.]+) mm", section).group(1))  # type: ignore[union-attr]
+    assert 0.15 < median < 0.45  # 0.2 mm per axis: the norm's median is ~0.31 mm
+    assert "the drift samples are within tolerance" in section
+    plot = etree.fromstring((evidence / "drift.svg").read_bytes())
+    points = plot.find("{http://www.w3.org/2000/svg}polyline").get("points").split()
+    assert len(points) == 300
+    assert cli("check", spec, cwd=tmp_path).returncode == 0
+    csv = tmp_path / "data" / "tracker.csv"
+    lines = csv.read_text().splitlines()
+    row = lines[5].split(",")
+    row[5] = repr(float(row[5]) + 0.01)  # one tracker position 10 mm off
+    lines[5] = ",".join(row)
+    csv.write_text("\n".join(lines) + "\n")
+    ran = cli("check", spec, cwd=tmp_path)
+    assert ran.returncode == 1 and "evidence/drift.svg" in ran.stderr and "evidence/README.md is stale" in ran.stderr
+
+
+def test_evidence_page_refuses_a_drifted_robot(tmp_path: Path) -> None:
+    """A 1 deg elbow offset the spec does not have: the page's verdict fails and report writes nothing."""
+    spec = _drift_project(tmp_path, offsets={"elbow_joint": math.radians(1.0)})
+    assert cli("generate", spec, cwd=tmp_path).returncode == 0
+    ran = cli("report", spec, cwd=tmp_path)
+    assert ran.returncode == 1 and "DRIFTED beyond tolerance" in ran.stderr, ran.stderr[-2000:]
+    assert not (tmp_path / "generated" / "warehouse_arm_description" / "evidence" / "drift.svg").exists()
+
+
+@pytest.mark.parametrize(
+    ("samples", "why"),
+    [
+        ("/etc/passwd", "is absolute"),
+        ("../../outside.csv", "leaves the project"),
+        ("../data/none.csv", "does not exist"),
+    ],
+)
+def test_drift_samples_path_bad(tmp_path: Path, samples: str, why: str) -> None:
+    spec = _drift_project(tmp_path, samples=samples)
+    ran = cli("validate", spec, cwd=tmp_path)
+    assert ran.returncode == 2 and "error[CAL005]" in ran.stderr and why in ran.stderr, ran.stderr[-1500:]
+
+
+def test_drift_samples_path_good(tmp_path: Path) -> None:
+    ran = cli("validate", _drift_project(tmp_path), cwd=tmp_path)
+    assert ran.returncode == 0 and "CAL005" not in ran.stderr, ran.stderr[-1500:]
+
+
+def test_pairing_interpolates_each_joint_between_its_own_states() -> None:
+    """Two /joint_states publishers, each with one joint, a late message, and gaps: a pose takes
+    each joint's value interpolated at its stamp (by hand), and is dropped when a joint has no
+    state within 0.1 s on both sides of it."""
+    from descgen.read.drift_samples import _Pairing
+
+    p = _Pairing(["a", "b"])
+    p.joint_state(0.00, ["a"], [0.0])
+    p.pose(0.03, (1, 2, 3, 0, 0, 0, 1))
+    p.joint_state(0.01, ["b"], [10.0])
+    p.joint_state(0.05, ["a"], [1.0])
+    p.joint_state(0.06, ["b"], [20.0])
+    p.joint_state(0.04, ["b"], [14.0])  # late: logged after the 0.06 one
+    p.pose(0.30, (4, 5, 6, 0, 0, 0, 1))  # a's next state is 0.5 s later: dropped
+    p.joint_state(0.80, ["a", "b"], [2.0, 30.0])
+    t, q, pv = p.finish()
+    assert t.tolist() == [0.03] and p.dropped == 1
+    # a: 0.0 at 0.00 and 1.0 at 0.05; b: 10 at 0.01 and 14 at 0.04 (the late one, not 20 at 0.06)
+    assert q[0].tolist() == pytest.approx([0.6, 10.0 + 4.0 * 2 / 3], abs=1e-12)
+    assert pv[0].tolist() == [1, 2, 3, 0, 0, 0, 1]
+
+
+def test_import_merges_by_source_and_keeps_the_rest_of_the_spec(tmp_path: Path) -> None:
+    """A second import for a joint calibrated from another source is refused (CAL013) unless
+    --replace; under the same source its fields are updated and the others kept; a comment before
+    the next top-level key survives; a bare 1e-3 in the CSV is read as SI."""
+    spec = tmp_path / "wa.yaml"
+    spec.write_text(
+        _no_poses(EXAMPLE.read_text())
+        + "\ncalibration:\n  sources:\n    factory: {method: tape}\n  joints:\n"
+        + "    elbow_joint: {source: factory, origin: {xyz: [0.3 mm, 0, 0]}}\n# kept: a note on what follows\n"
+        + "waivers: []\n"
+    )
+    offsets = tmp_path / "o.csv"
+    offsets.write_text("joint,offset\nelbow_joint,1e-3\n")
+    ran = cli("import-calibration", spec, offsets, "--format", "csv", cwd=tmp_path)
+    assert ran.returncode == 2 and "error[CAL013]" in ran.stderr and "'factory'" in ran.stderr
+    ran = cli("import-calibration", spec, offsets, "--format", "csv", "--source", "factory", cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr[-1500:]
+    text = spec.read_text()
+    elbow = yaml.safe_load(text)["calibration"]["joints"]["elbow_joint"]
+    assert elbow["offset"] == "1e-3 rad" and elbow["origin"]["xyz"] == ["0.3 mm", 0, 0]
+    assert "# kept: a note on what follows\nwaivers: []" in text
+    ran = cli("import-calibration", spec, offsets, "--format", "csv", "--replace", cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr[-1500:]
+    elbow = yaml.safe_load(spec.read_text())["calibration"]["joints"]["elbow_joint"]
+    assert elbow == {"source": "joint_offsets", "offset": "1e-3 rad"}
+
+
+def test_drift_input_refusals_and_quaternions(tmp_path: Path) -> None:
+    """Quaternions are normalised within 1e-3 of unit length and refused beyond (CSV: the row); a
+    recording whose poses are NaN or whose /joint_states is not JointState is handled (dropped and
+    counted, CAL012); the frame as its own base is refused."""
+    urdf = EXAMPLE_URDF.read_text()
+    rec = dd.samples(urdf, "tool_link", base="arm_base_link", joints=ARM, n=60, noise_m=0.0001, noise_rad=0.001)
+    dd.write_csv(tmp_path / "s.csv", rec)
+    rows = (tmp_path / "s.csv").read_text().splitlines()
+    scaled = rows[:3] + [
+        ",".join([*r.split(",")[:-4], *(repr(float(c) * 1.0004) for c in r.split(",")[-4:])]) for r in rows[3:]
+    ]
+    (tmp_path / "near.csv").write_text("\n".join(scaled) + "\n")
+    base = ("--base", "arm_base_link")
+    near = _drift_json(tmp_path, "--samples", tmp_path / "near.csv", *base)
+    exact = _drift_json(tmp_path, "--samples", tmp_path / "s.csv", *base)
+    assert near["residual"]["rotation"]["median_rad"] == pytest.approx(
+        exact["residual"]["rotation"]["median_rad"], rel=1e-9
+    )
+    bad = [*rows[:3], ",".join([*rows[3].split(",")[:-4], "0", "0", "0", "3"]), *rows[4:]]
+    (tmp_path / "bad.csv").write_text("\n".join(bad) + "\n")
+    ran = cli("drift", EXAMPLE, "--frame", "tool_link", *base, "--samples", tmp_path / "bad.csv", cwd=tmp_path)
+    assert ran.returncode == 2 and "error[CAL012]" in ran.stderr and "row 4" in ran.stderr
+    ran = cli(
+        "drift", EXAMPLE, "--frame", "tool_link", "--base", "tool_link", "--samples", tmp_path / "s.csv", cwd=tmp_path
+    )
+    assert ran.returncode == 2 and "nothing to compare" in ran.stderr
+    nan = dataclasses.replace(rec, xyz=np.where(np.arange(60)[:, None] % 10 == 0, np.nan, rec.xyz))
+    dd.write_bag(tmp_path / "nan", nan)
+    report = _drift_json(tmp_path, "--recording", tmp_path / "nan", "--pose-topic", "/tracker/pose")
+    assert report["residual"]["samples"] == 54 and report["dropped"] == 6
+    dd.write_bag(tmp_path / "wrong", rec)
+    ran = cli(
+        "drift",
+        EXAMPLE,
+        "--frame",
+        "tool_link",
+        "--recording",
+        tmp_path / "wrong",
+        "--pose-topic",
+        "/joint_states",
+        cwd=tmp_path,
+    )
+    assert ran.returncode == 2 and "error[CAL012]" in ran.stderr
+
+
+def test_suggested_block_quotes_joint_names() -> None:
+    """A joint name YAML would read as syntax (*j, true) comes back as the same key."""
+    from descgen.audit.spec import load_spec
+    from descgen.commands.drift import suggested_block
+
+    robot = load_spec(EXAMPLE, rules=False).robot
+    block = suggested_block(
+        robot,
+        [
+            {"parameter": "joint:*j:offset", "value": 0.01, "stderr": 0.001},
+            {"parameter": "joint:true:origin.x", "value": 0.001, "stderr": 0.0001},
+        ],
+    )
+    joints = yaml.safe_load(block)["calibration"]["joints"]
+    assert set(joints) == {"*j", "true"}
+
+
+def test_identification_jacobian_matches_central_differences() -> None:
+    """The closed-form Jacobian (every parameter kind: origin xyz and rpy, revolute, continuous and
+    prismatic offsets, a fixed joint, unit and non-unit axes, non-zero rpy) against central
+    differences of the forward kinematics, to the differences' own error."""
+    from descgen.core.model import Joint, Pose
+    from descgen.physics.drift import Model, parameters
+
+    rng = random.Random(1)
+
+    def joint(name: str, parent: str, child: str, kind: str) -> Joint:
+        origin = Pose(tuple(rng.uniform(-0.3, 0.3) for _ in range(3)), tuple(rng.uniform(-3, 3) for _ in range(3)))
+        return Joint(name, kind, parent, child, origin, tuple(rng.uniform(-1, 1) for _ in range(3)))
+
+    kinds = ("revolute", "prismatic", "continuous", "fixed", "revolute")
+    joints = [joint(f"j{i}", f"l{i}", f"l{i + 1}", k) for i, k in enumerate(kinds)]
+    model = Model(joints, parameters(joints))
+    q = {j.name: np.array([rng.uniform(-2, 2) for _ in range(9)]) for j in joints}
+    theta = np.array([rng.uniform(-0.05, 0.05) for _ in model.names])
+    closed, numeric = model.jacobian(q, theta, 9), model.jacobian_numeric(q, theta, 9)
+    assert closed.shape == (27, 34)
+    assert np.abs(closed - numeric).max() < 1e-8
+    assert np.abs(closed).max() > 0.1  # not all zeros
+
+
+def test_nothing_significant_suggests_an_empty_block(tmp_path: Path) -> None:
+    """A robot that matches its model: no fitted value clears three standard errors, so none is
+    suggested, and the (empty) block still validates."""
+    urdf = EXAMPLE_URDF.read_text()
+    rec = dd.samples(urdf, "tool_link", base="arm_base_link", joints=ARM, n=200, noise_m=0.0002, seed=5)
+    dd.write_csv(tmp_path / "s.csv", rec)
+    report = _drift_json(
+        tmp_path, "--samples", tmp_path / "s.csv", "--base", "arm_base_link", "--parameters", "joint:*:offset"
+    )
+    assert report["identified"] and not any(p["significant"] for p in report["identified"])
+    assert yaml.safe_load(report["suggested"])["calibration"]["joints"] == {}
+    spec = tmp_path / "wa.yaml"
+    spec.write_text(EXAMPLE.read_text() + "\n" + report["suggested"])
+    assert cli("validate", spec, cwd=tmp_path).returncode == 0

@@ -505,6 +505,12 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
         ["import-calibration", NOSPEC, "{afile}", "--format", "ur", "--dry-run=1"],
         "ignored explicit argument",
     ),
+    (
+        "import-calibration",
+        "--replace",
+        ["import-calibration", NOSPEC, "{afile}", "--format", "ur", "--replace=1"],
+        "ignored explicit argument",
+    ),
     ("drift", "spec", ["drift", NOSPEC, "--samples", "{afile}", "--frame", "tool_link"], "error[YAML002]"),
     (
         "drift",
@@ -530,7 +536,7 @@ BAD_OPTIONS: list[tuple[str, str, list[str], str]] = [
         "drift",
         "--parameters",
         ["drift", SPEC, "--samples", "{afile}", "--frame", "tool_link", "--parameters", "nope"],
-        "error[CAL012]",
+        "error[CAL012]: --parameters matches no parameter",
     ),
     (
         "drift",

@@ -431,6 +431,7 @@ def _cmd_import_calibration(args: argparse.Namespace) -> int:
         prefix=args.prefix,
         sensor=args.sensor,
         date=args.date,
+        replace=args.replace,
     )
     sys.stdout.write(done.diff(args.spec))
     for line in done.entries:
@@ -894,6 +895,9 @@ def parser() -> argparse.ArgumentParser:
     ic.add_argument("--prefix", default="", type=types.prefix, help="prefix of the spec's joint and frame names")
     ic.add_argument("--sensor", type=types.name, help="handeye: the spec's sensor the result mounts")
     ic.add_argument("--date", type=types.date, help="when the calibration was measured (YYYY-MM-DD)")
+    ic.add_argument(
+        "--replace", action="store_true", help="replace an entry that cites another source whole (else CAL013)"
+    )
     ic.add_argument("--dry-run", action="store_true", help="print the diff, write nothing")
     ic.set_defaults(fn=_cmd_import_calibration)
 

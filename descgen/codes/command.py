@@ -69,6 +69,17 @@ CAL012 = declare(
 )
 
 
+CAL013 = declare(
+    "CAL013",
+    "calibration-entry-conflict",
+    "error",
+    "An imported calibration would replace a joint's or sensor's calibration that cites another source.",
+    """An entry cites one source for all its values; merging values of two sources into it would credit one
+      with the other's measurement, and replacing it silently would lose a calibration. Import under the same
+      --source name to update it, or pass --replace to replace the entry whole.""",
+)
+
+
 FIX001 = declare(
     "FIX001",
     "fix-not-safe",

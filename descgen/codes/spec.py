@@ -49,6 +49,17 @@ CAL004 = declare(
 )
 
 
+CAL005 = declare(
+    "CAL005",
+    "drift-samples-unusable",
+    "error",
+    "calibration.drift.samples is absolute, leaves the project folder, or is not a regular file.",
+    """The samples are read by every report and check on every machine, so they are named relative to the spec
+      and kept inside the project (the folder holding specs/), like templates; a FIFO or a device would never
+      end. Commit the CSV beside the spec and name it relative to it.""",
+)
+
+
 CTRL048 = declare(
     "CTRL048",
     "bad-calibrated-parameter",

@@ -18,13 +18,12 @@ from __future__ import annotations
 
 import difflib
 import math
-import re
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from descgen.codes.command import CAL010, CAL011
+from descgen.codes.command import CAL010, CAL011, CAL013
 from descgen.core.findings import InputError, Where
 from descgen.core.model import ONE_DOF, Joint, Pose, Robot
 from descgen.core.record import record
@@ -39,7 +38,6 @@ _METHOD = {
     "handeye": "hand-eye calibration",
     "csv": "joint zero offsets",
 }
-_TOP_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*\s*:")
 
 
 @record
@@ -188,7 +186,7 @@ def _csv(robot: Robot, spec: Path, file: Path, prefix: str, source: str) -> tupl
 
     joints: dict[str, Any] = {}
     said: list[str] = []
-    for name, value, line in read_offsets_csv(file):
+    for name, number, unit, line in read_offsets_csv(file):
         full = prefix + name
         j = robot.joint(full)
         if j is None or j.type not in ONE_DOF:
@@ -202,8 +200,8 @@ def _csv(robot: Robot, spec: Path, file: Path, prefix: str, source: str) -> tupl
                     )
                 ]
             )
-        if not any(c.isalpha() for c in value):  # SI, as the format says: the joint's own unit
-            value = f"{value} {'m' if j.type == 'prismatic' else 'rad'}"
+        # no unit: SI, as the format says, in the joint's own unit
+        value = f"{number} {unit or ('m' if j.type == 'prismatic' else 'rad')}"
         joints[full] = {"source": source, "offset": value}
         said.append(f"joint:{full}: zero offset {value}")
     return {"joints": joints}, said
@@ -219,6 +217,7 @@ def import_text(
     prefix: str = "",
     sensor: str | None = None,
     date: str | None = None,
+    replace: bool = False,
 ) -> Imported:
     """The spec's text with ``file`` merged into its ``calibration:`` (checked, not written)."""
     import yaml
@@ -245,8 +244,25 @@ def import_text(
         provenance["hash"] = str(new["hash"])
     cal["sources"] = {**(cal.get("sources") or {}), name: provenance}
     for section in ("joints", "sensors"):
-        if new.get(section):
-            cal[section] = {**(cal.get(section) or {}), **new[section]}
+        merged = dict(cal.get(section) or {})
+        for key, entry in (new.get(section) or {}).items():
+            prev = merged.get(key)
+            if isinstance(prev, dict) and not replace and prev.get("source") != entry["source"]:
+                raise InputError(
+                    [
+                        CAL013.finding(
+                            f"calibration.{section}.{key} cites source {prev.get('source')!r}; the import would "
+                            f"replace it with values from {entry['source']!r}",
+                            "import with --source set to that name to update the entry, or pass --replace",
+                            "calibration",
+                            Where(str(spec)),
+                        )
+                    ]
+                )
+            # the same source: the fields this import gives are updated, the others kept
+            merged[key] = entry if replace or not isinstance(prev, dict) else {**prev, **entry}
+        if merged:
+            cal[section] = merged
     block = yaml.safe_dump({"calibration": cal}, sort_keys=False, default_flow_style=None, width=100)
     after = _splice(text, block)
     _check(after, spec, robot, fmt, file, new)
@@ -260,7 +276,8 @@ def _splice(text: str, block: str) -> str:
         sep = "" if not text or text.endswith("\n") else "\n"
         return text + sep + "\n" + block
     end = start + 1
-    while end < len(lines) and not _TOP_KEY.match(lines[end]):
+    # the block ends at the next line that is not indented (a key, a comment, a document end)
+    while end < len(lines) and (lines[end].strip() == "" or lines[end][:1] in (" ", "\t")):
         end += 1
     while end > start + 1 and lines[end - 1].strip() == "":  # keep the blank lines before the next key
         end -= 1

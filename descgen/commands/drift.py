@@ -12,6 +12,7 @@ not tell apart reported unidentifiable. Exit 1 when the 95th percentile exceeds 
 from __future__ import annotations
 
 import fnmatch
+import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -25,8 +26,10 @@ from descgen.core.model import ONE_DOF, Robot
 from descgen.physics import drift as fitting
 from descgen.physics.calibration import split_parameter
 from descgen.read.drift_samples import Samples, read_bag, read_csv
+from descgen.read.drift_samples import refuse as read_refuse
 
 MIN_SAMPLES = 10
+SIGNIFICANT = 3.0  # standard errors a fitted value must clear to be suggested as a correction
 
 
 def _refuse(why: str, hint: str, where: str = "<command line>") -> InputError:
@@ -50,6 +53,23 @@ def _rotation_error(model_rot: np.ndarray, quat: np.ndarray) -> np.ndarray:
     rel = np.einsum("nji,njk->nik", model_rot, meas)
     cos = np.clip((np.trace(rel, axis1=1, axis2=2) - 1) / 2, -1.0, 1.0)
     return np.asarray(np.arccos(cos))
+
+
+def _residuals(
+    model: fitting.Model, q: dict[str, np.ndarray], xyz: np.ndarray, quat: np.ndarray | None, theta: np.ndarray
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """Position error (m) and rotation error (rad, when measured) per sample, a chunk at a time
+    (the model's frames of every sample at once would be ten times the samples' own size)."""
+    n = len(xyz)
+    err = np.empty(n)
+    ang = np.empty(n) if quat is not None else None
+    for lo in range(0, n, fitting.CHUNK):
+        hi = min(n, lo + fitting.CHUNK)
+        pos, rot = model.forward({k: v[lo:hi] for k, v in q.items()}, theta, hi - lo)
+        err[lo:hi] = np.linalg.norm(xyz[lo:hi] - pos, axis=1)
+        if ang is not None and quat is not None:
+            ang[lo:hi] = _rotation_error(rot, quat[lo:hi])
+    return err, ang
 
 
 def _unit(robot: Robot, name: str) -> tuple[float, str]:
@@ -78,10 +98,10 @@ def suggested_block(robot: Robot, identified: list[dict[str, Any]], source: str 
         "calibration:",
         "  sources:",
         f"    {source}: {{method: descgen drift (least squares on a recording), tool: descgen drift}}",
-        "  joints:",
+        "  joints:" if joints else "  joints: {}  # nothing the recording determines beyond its noise",
     ]
     for joint, entry in joints.items():
-        lines.append(f"    {joint}:")
+        lines.append(f"    {json.dumps(joint)}:")  # a joint name may be anything YAML reads as syntax
         lines.append(f"      source: {source}")
         if "offset" in entry:
             v, e, u = entry["offset"]
@@ -108,7 +128,10 @@ def drift(
     samples: Path | None = None,
     parameters: Sequence[str] = (),
     tolerance_m: float = 0.001,
+    series: bool = False,
 ) -> dict[str, Any]:
+    """The report (see the module doc); ``series``: with ``series: {t_s, residual_m}``, the
+    residual of every sample in time order (t from the first sample), for a plot."""
     links = {lk.name for lk in robot.links}
     if frame not in links:
         raise _refuse(f"--frame {frame!r} is not a link of the robot", "name a link of the spec")
@@ -119,23 +142,41 @@ def drift(
     if recording is not None:
         if pose_topic is None:
             raise _refuse("--recording needs --pose-topic", "name the topic of the measured pose")
-        probe = fitting.chain(robot, chosen_base, frame) or []
+        # read once with every moving joint from the root down: the poses' frame_id may pick a lower base
+        probe = (
+            fitting.chain(robot, robot.root() or chosen_base, frame) or fitting.chain(robot, chosen_base, frame) or []
+        )
         data = read_bag(recording, [j.name for j in probe if j.type in ONE_DOF], pose_topic)
         if base is None and data.base in links and data.base != chosen_base:
             chosen_base = str(data.base)
-            data = read_bag(
-                recording,
-                [j.name for j in fitting.chain(robot, chosen_base, frame) or [] if j.type in ONE_DOF],
-                pose_topic,
-            )
     joints = fitting.chain(robot, chosen_base, frame)
     if joints is None:
         raise _refuse(f"{frame!r} is not below {chosen_base!r} in the tree", "give --base, an ancestor of --frame")
     moving = [j.name for j in joints if j.type in ONE_DOF]
+    names = _parameters(joints, chosen_base, frame, parameters)  # before the samples: a bad option first
+    if recording is not None:
+        lacking = [j for j in moving if j not in data.q]
+        if lacking:
+            raise read_refuse(
+                recording, f"/joint_states never gives joint {lacking[0]!r}", "record every joint of the chain"
+            )
     if recording is None:
         assert samples is not None
         data = read_csv(samples, moving)
-    return _report(robot, joints, moving, data, chosen_base, frame, parameters, tolerance_m)
+    return _report(robot, joints, moving, data, chosen_base, frame, names, tolerance_m, series)
+
+
+def _parameters(joints: list[Any], base: str, frame: str, patterns: Sequence[str]) -> list[str]:
+    names = fitting.parameters(joints)
+    if not names:
+        raise _refuse(
+            f"no joint between {base!r} and {frame!r}: nothing to compare", "give --base an ancestor of --frame"
+        )
+    if patterns:
+        names = [p for p in names if any(fnmatch.fnmatchcase(p, pat) for pat in patterns)]
+        if not names:
+            raise _refuse("--parameters matches no parameter of the chain", "e.g. 'joint:*:offset'")
+    return names
 
 
 def _report(
@@ -145,8 +186,9 @@ def _report(
     data: Samples,
     base: str,
     frame: str,
-    patterns: Sequence[str],
+    names: list[str],
     tolerance_m: float,
+    series: bool = False,
 ) -> dict[str, Any]:
     n = len(data.t)
     if n < MIN_SAMPLES:
@@ -155,34 +197,34 @@ def _report(
     t = data.t[order]
     q = {k: v[order] for k, v in data.q.items()}
     xyz = data.xyz[order]
-    names = fitting.parameters(joints)
-    if patterns:
-        names = [p for p in names if any(fnmatch.fnmatchcase(p, pat) for pat in patterns)]
-        if not names:
-            raise _refuse("--parameters matches no parameter of the chain", "e.g. 'joint:*:offset'")
     model = fitting.Model(joints, names)
     zero = np.zeros(len(names))
-    pos, rot = model.forward(q, zero, n)
-    err = np.linalg.norm(xyz - pos, axis=1)
+    quat = data.quat[order] if data.quat is not None else None
+    err, ang = _residuals(model, q, xyz, quat, zero)
     residual: dict[str, Any] = {f"{k}_m": v for k, v in _stats(err).items()} | {"samples": n}
-    if data.quat is not None:
-        ang = _rotation_error(rot, data.quat[order])
+    if ang is not None:
         residual["rotation"] = {f"{k}_rad": v for k, v in _stats(ang).items()}
     change = fitting.change_point(model, q, xyz)
     start = change.index if change is not None else 0
     seg = slice(start, n)
     q_seg = {k: v[seg] for k, v in q.items()}
     fit = fitting.fit(model, q_seg, xyz[seg])
-    pos_fit, _ = model.forward(q_seg, fit.theta, n - start)
-    after = np.linalg.norm(xyz[seg] - pos_fit, axis=1)
+    after, _ = _residuals(model, q_seg, xyz[seg], None, fit.theta)
+    unfitted = {p for i, p in enumerate(names) if not fit.fitted[i]}
     identified = [
-        {"parameter": p, "value": float(fit.theta[i]), "stderr": float(fit.stderr[i])}
-        | ({"stands_for": fit.confounded[p]} if fit.confounded.get(p) else {})
+        {
+            "parameter": p,
+            "value": float(fit.theta[i]),
+            "stderr": float(fit.stderr[i]),
+            # a value within SIGNIFICANT standard errors of zero is not evidence of a correction
+            "significant": bool(abs(fit.theta[i]) >= SIGNIFICANT * fit.stderr[i]),
+        }
+        | ({"stands_for": absorbed} if (absorbed := [k for k in fit.confounded.get(p, []) if k in unfitted]) else {})
         for i, p in enumerate(names)
         if fit.fitted[i]
     ]
     unidentifiable = [p for i, p in enumerate(names) if not fit.fitted[i]]
-    return {
+    out = {
         "frame": frame,
         "base": base,
         "residual": residual,
@@ -205,8 +247,11 @@ def _report(
         "noise_m": fit.sigma,
         "tolerance_m": tolerance_m,
         "drifted": bool(residual["p95_m"] > tolerance_m),
-        "suggested": suggested_block(robot, identified),
+        "suggested": suggested_block(robot, [p for p in identified if p["significant"]]),
     }
+    if series:
+        out["series"] = {"t_s": [float(x) for x in t - t[0]], "residual_m": [float(x) for x in err]}
+    return out
 
 
 def text(report: dict[str, Any]) -> str:
@@ -241,14 +286,22 @@ def text(report: dict[str, Any]) -> str:
         f"(noise {report['noise_m'] * 1000:.3f} mm)"
     )
     for p in report["identified"]:
-        also = f" (with {', '.join(p['stands_for'])}: only their sum is seen)" if p.get("stands_for") else ""
-        out.append(f"  identified {p['parameter']} = {p['value']:.6g} ± {p['stderr']:.2g}{also}")
+        also = (
+            f" (also carries {', '.join(p['stands_for'])}: this motion cannot tell them apart)"
+            if p.get("stands_for")
+            else ""
+        )
+        weak = "" if p["significant"] else f" (within {SIGNIFICANT:g} standard errors of 0: not suggested)"
+        out.append(f"  identified {p['parameter']} = {p['value']:.6g} ± {p['stderr']:.2g}{weak}{also}")
     if report["unidentifiable"]:
         out.append(
             f"  unidentifiable from this motion ({len(report['unidentifiable'])}): "
             + ", ".join(report["unidentifiable"])
         )
-    out.append("  suggested calibration (corrections on top of the spec as it is):")
+    out.append(
+        f"  suggested calibration (the values beyond {SIGNIFICANT:g} standard errors, corrections on top of the spec "
+        "as it is):"
+    )
     out += ["    " + ln for ln in report["suggested"].splitlines()]
     return "\n".join(out) + "\n"
 

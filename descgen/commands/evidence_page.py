@@ -19,6 +19,7 @@ tests/test_evidence_recompute.py (the page built again and compared) until FORMA
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import re
@@ -39,7 +40,7 @@ _VOLATILE = re.compile(r"<!-- volatile -->.*?<!-- /volatile -->", re.S)
 _RECORD = re.compile(r"^<!-- descgen input-sha256=[0-9a-f]{64} content-sha256=[0-9a-f]{64} -->\n?", re.M)
 # what the page reads from the package besides the files it is given: verdict.json, which files
 # exist (links), the plot names; the page itself, its pictures and the machine's frames.svg aside
-_NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg")
+_NOT_READ = ("evidence/README.md", "evidence/poses/", "evidence/frames.svg", "evidence/drift.svg")
 # the libraries whose behaviour the page prints: xacro and lxml (proofs), pint and pydantic
 # (validation), rosbags (the tf scenario's recording), numpy, PyYAML, Jinja2 (rendering), trimesh
 _TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Jinja2", "trimesh")
@@ -183,10 +184,97 @@ def _waivers(robot: Any) -> list[str]:
     return lines
 
 
+def _drift_of(robot: Any) -> dict[str, Any]:
+    """``descgen drift`` of the spec's ``calibration.drift`` samples, with the series to plot
+    (the page and evidence/drift.svg are made from one run: kept per robot and file state)."""
+    st = Path(robot.drift_check.samples).stat()
+    return _drift_cached(robot, (st.st_ino, st.st_size, st.st_mtime_ns))
+
+
+@functools.lru_cache(maxsize=4)
+def _drift_cached(robot: Any, _file: tuple[int, int, int]) -> dict[str, Any]:
+    from descgen.commands.drift import drift
+
+    c = robot.drift_check
+    return drift(
+        robot,
+        c.frame,
+        base=c.base,
+        samples=Path(c.samples),
+        parameters=c.parameters,
+        tolerance_m=c.tolerance,
+        series=True,
+    )
+
+
+def drift_svg(robot: Any) -> str | None:
+    """evidence/drift.svg of the robot's drift check; None without one."""
+    from descgen.write import drift_plot
+
+    if robot.drift_check is None:
+        return None
+    d = _drift_of(robot)
+    change = d["change_point"]["after_s"] if d["change_point"] else None
+    label = f"{d['frame']} in {d['base']}: position residual |measured - model| per sample"
+    return drift_plot.svg(
+        d["series"]["t_s"], [r * 1000 for r in d["series"]["residual_m"]], d["tolerance_m"] * 1000, change, label
+    )
+
+
+def write_drift(package: Path, robot: Any) -> list[str]:
+    """evidence/drift.svg written (report), or removed for a spec without a drift check."""
+    from descgen.write import drift_plot
+
+    return drift_plot.write(package, drift_svg(robot))
+
+
+def drift_stale(package: Path, robot: Any) -> list[Finding]:
+    from descgen.write import drift_plot
+
+    return drift_plot.stale(package, drift_svg(robot))
+
+
+def _drift(robot: Any, package: Path) -> tuple[list[str], bool]:
+    if robot.drift_check is None:
+        return [], True
+    md = _md()
+    d = _drift_of(robot)
+    r, a = d["residual"], d["after_fit"]
+    c = robot.drift_check
+    samples = Path(c.samples).name
+    lines = [
+        f"Drift: {md.mdcode(samples)} ({r['samples']} samples), {md.mdcode(d['frame'])} measured in "
+        f"{md.mdcode(d['base'])}, against the model as calibrated (`descgen drift`); the residual over time "
+        "(evidence/drift.svg):",
+        "",
+        "![residual over time](drift.svg)",
+        "",
+        f"- residual: median {r['median_m'] * 1000:.3f} mm, 95% {r['p95_m'] * 1000:.3f} mm, worst "
+        f"{r['max_m'] * 1000:.3f} mm (tolerance {d['tolerance_m'] * 1000:g} mm)",
+    ]
+    ch = d["change_point"]
+    lines.append(
+        f"- the residual changed {ch['after_s']:.1f} s into the samples (median {ch['before_median_m'] * 1000:.3f} mm "
+        f"before, {ch['after_median_m'] * 1000:.3f} mm after); the fit uses the samples after it"
+        if ch
+        else "- no change of the residual over the samples"
+    )
+    lines.append(
+        f"- after fitting {len(d['identified'])} parameter(s): median {a['median_m'] * 1000:.3f} mm, 95% "
+        f"{a['p95_m'] * 1000:.3f} mm; {len(d['unidentifiable'])} unidentifiable from this motion"
+    )
+    big = sorted(d["identified"], key=lambda p: -abs(p["value"]) / max(p["stderr"], 1e-300))[:5]
+    lines += [
+        f"- {md.mdcode(p['parameter'])} = {p['value']:.4g} ± {p['stderr']:.2g} (SI)" for p in big if p["stderr"] > 0
+    ]
+    return [*lines, ""], not d["drifted"]
+
+
 def _calibration(robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
     """The calibration layer beside the nominal model: each calibrated joint's nominal and
-    calibrated origin, how far the correction moves and turns its child frame, and the source."""
-    if not robot.calibration:
+    calibrated origin, how far the correction moves and turns its child frame, and the source;
+    then the drift check's residual over time, when the spec has one."""
+    if not robot.calibration and robot.drift_check is None:
         return []
     from descgen.core import display
     from descgen.physics.calibration import correction_size
@@ -194,7 +282,7 @@ def _calibration(robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
     md = _md()
     sources = {s.name: s for s in robot.calibration_sources}
     lines = [
-        "## 11. Calibration",
+        "## 11. Calibration and drift",
         "",
         f"The robot as measured, a layer on the nominal model: {_link(package, 'config/calibration/default.yaml')} "
         f"(the Xacro's `calibration:=`; {_link(package, 'config/calibration/nominal.yaml')} gives the nominal model).",
@@ -221,15 +309,14 @@ def _calibration(robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
     done = dict(proofs or ())
     name = "xacro calibration:=nominal.yaml expands to the nominal model"
     ok = not [f for f in done.get(name, ()) if f.blocks]
-    lines += [
-        "",
-        _verdict(
-            ok,
-            f"{len(robot.calibration)} calibrated joint(s), each citing its source; the Xacro without "
-            "the layer expands to the nominal model",
-        ),
-        "",
-    ]
+    drift_lines, within = _drift(robot, package)
+    said = (
+        f"{len(robot.calibration)} calibrated joint(s), each citing its source; the Xacro without the layer expands "
+        "to the nominal model"
+    )
+    if robot.drift_check is not None:
+        said += "; the drift samples are within tolerance" if within else "; the robot has DRIFTED beyond tolerance"
+    lines += ["", *drift_lines, _verdict(ok and within, said), ""]
     return lines
 
 
@@ -558,6 +645,7 @@ def input_key(
     package: Path,
     check_out: tuple[str, str],
     n: int,
+    drift: Any = None,
 ) -> str:
     """The key (descgen/infra/keys.py) of everything the page's comparable text is a function
     of: the spec's bytes, the rendered files and meshes, what the page reads from the package,
@@ -580,6 +668,8 @@ def input_key(
         "check_out": [_relative(text, package) for text in check_out],
         "n": n,
     }
+    if drift is not None:  # the samples the page's drift section is made from (spec calibration.drift)
+        inputs["drift"] = evidence_hash.sha256(Path(drift.samples).read_bytes())
     return keys.key(PAGE, FORMAT, inputs, _TOOLS, keys.EVIDENCE)
 
 

@@ -37,6 +37,7 @@ from descgen.core.model import (
     Sphere,
 )
 from descgen.core.naming import mirror_name
+from descgen.physics import calibration
 from descgen.physics.bodies import dims, moving_links
 
 
@@ -75,7 +76,7 @@ def _key(f: Finding) -> tuple[str, str, str]:
 
 
 def _swap_joint(robot: Robot, old: Joint, new: Joint) -> Robot:
-    return replace(robot, joints=tuple(new if j is old else j for j in robot.joints))
+    return calibration.with_joint(robot, old, new)
 
 
 def _swap_link(robot: Robot, old: Link, new: Link) -> Robot:

@@ -347,9 +347,9 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
     shown = spec_display(spec, root)
     lines = page.check_lines(shown, outcome.findings, outcome.diff)
     meshes = {rel: data for rel, (_, data) in p.meshes.items()}
-    key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, p.file_count())
+    key = page.input_key(spec, shown, p.files, meshes, p.package_dir, lines, p.file_count(), p.robot.drift_check)
     if not write_page and page.current(p.package_dir, key):  # built from these very inputs: not again
-        return pose_images.stale(p.package_dir, p.robot)
+        return pose_images.stale(p.package_dir, p.robot) + page.drift_stale(p.package_dir, p.robot)
     fresh = page.build(
         spec,
         shown,
@@ -364,7 +364,11 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
         p.package_paths,
     )
     if not write_page:
-        return page.stale(p.package_dir, fresh) + pose_images.stale(p.package_dir, p.robot)
+        return (
+            page.stale(p.package_dir, fresh)
+            + pose_images.stale(p.package_dir, p.robot)
+            + page.drift_stale(p.package_dir, p.robot)
+        )
     bad = page.failed_verdicts(fresh)
     if outcome.failed or bad:
         why = bad[0] if bad else "the package is stale or a check failed"
@@ -379,6 +383,7 @@ def _evidence_page(spec: Path, p: Plan, root: Path, outcome: package_write.Outco
             )
         ]
     outcome.written += pose_images.write(p.package_dir, p.robot)  # before the page that embeds them
+    outcome.written += page.write_drift(p.package_dir, p.robot)
     outcome.written.append(page.PAGE)
     page.write(p.package_dir, fresh)
     return []

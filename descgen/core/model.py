@@ -559,6 +559,19 @@ class JointCalibration:
 
 
 @record
+class DriftCheck:
+    """Samples of the running robot the evidence page compares the model with (spec
+    ``calibration.drift``): an absolute path resolved beside the spec, inside the project."""
+
+    samples: str
+    frame: str
+    base: str | None = None
+    tolerance: float = 0.001
+    parameters: tuple[str, ...] = ()
+    where: Where = NOWHERE
+
+
+@record
 class Waiver:
     """A finding the team accepts for now (spec ``waivers:``): its code and subject exactly as
     findings print them, and why. The finding is still reported, as waived; it fails nothing."""
@@ -609,6 +622,7 @@ class Robot:
     # the spec's ``calibration:`` layer; the joints above already hold the calibrated origins
     calibration: tuple[JointCalibration, ...] = ()
     calibration_sources: tuple[CalibrationSource, ...] = ()
+    drift_check: DriftCheck | None = None
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

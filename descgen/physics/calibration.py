@@ -37,6 +37,36 @@ def calibrated_origin(joint: Joint, nominal: Pose, offset: float, dxyz: Vec3, dr
     return Pose((float(t[0, 3]), float(t[1, 3]), float(t[2, 3])), matrix_rpy(t[:3, :3]))
 
 
+def nominal_origin(joint: Joint, calibrated: Pose, entry: JointCalibration) -> Pose:
+    """The inverse of :func:`calibrated_origin`: the nominal origin that ``entry``'s corrections
+    turn into ``calibrated`` (for a sensor mount, which replaces the origin, the entry's own)."""
+    if entry.sensor is not None:
+        return entry.nominal
+    xyz, rpy = calibrated.xyz, calibrated.rpy
+    if entry.offset != 0.0:
+        import numpy as np
+
+        from descgen.physics.kinematics import motion
+        from descgen.physics.transforms import matrix_rpy, pose_matrix
+
+        t = pose_matrix(xyz, rpy) @ np.linalg.inv(motion(joint, entry.offset))
+        xyz, rpy = (float(t[0, 3]), float(t[1, 3]), float(t[2, 3])), matrix_rpy(t[:3, :3])
+    d, r = entry.dxyz, entry.drpy
+    return Pose((xyz[0] - d[0], xyz[1] - d[1], xyz[2] - d[2]), (rpy[0] - r[0], rpy[1] - r[1], rpy[2] - r[2]))
+
+
+def with_joint(robot: Robot, old: Joint, new: Joint) -> Robot:
+    """``robot`` with ``old`` replaced by ``new`` (a planted fault), the calibration layer kept
+    consistent: a calibrated joint's nominal origin moves with its calibrated one, so a pose
+    judged against the nominal model sees the fault too."""
+    joints = tuple(new if j is old else j for j in robot.joints)
+    layer = tuple(
+        replace(e, calibrated=new.origin, nominal=nominal_origin(new, new.origin, e)) if e.joint == old.name else e
+        for e in robot.calibration
+    )
+    return replace(robot, joints=joints, calibration=layer)
+
+
 def nominal(robot: Robot) -> Robot:
     """``robot`` without its calibration layer: every calibrated joint at its nominal origin."""
     if not robot.calibration:
@@ -89,6 +119,8 @@ __all__ = [
     "correction_size",
     "for_pose",
     "nominal",
+    "nominal_origin",
     "parameter",
     "split_parameter",
+    "with_joint",
 ]

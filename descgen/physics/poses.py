@@ -127,7 +127,7 @@ def findings(robot: Robot, rows: list[Row] | None = None) -> list[Finding]:
         if row.ok or row.model is None:
             continue  # an unknown frame is an input error (POSE002)
         fm, kp = row.measurement, row.pose
-        joints = path_joints(robot, fm.frame, fm.relative_to)
+        joints = path_joints(calibration.for_pose(robot, kp), fm.frame, fm.relative_to)
         # as many digits as the tolerance judges, so the model's value can be pasted as the fix
         d = display.mm_digits(fm.tolerance)
         message = (

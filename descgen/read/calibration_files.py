@@ -148,15 +148,14 @@ def read_handeye(path: Path) -> HandEye:
     return HandEye(parent, child, xyz, q, kind)  # type: ignore[arg-type]
 
 
-def read_offsets_csv(path: Path) -> tuple[tuple[str, str, int], ...]:
-    """(joint, the offset as a quantity text, line) per row: ``value unit`` when a unit column is
-    given, else the bare number (the joint's SI unit: rad or m)."""
+def read_offsets_csv(path: Path) -> tuple[tuple[str, str, str, int], ...]:
+    """(joint, the offset's number as written, its unit or "" for the joint's SI unit, line) per row."""
     rows = list(csv.reader(io.StringIO(_text(path))))
     if not rows or [c.strip() for c in rows[0][:2]] != ["joint", "offset"]:
         raise _refuse(path, "the header must be joint,offset (and optionally ,unit)", 1)
     header = [c.strip() for c in rows[0]]
     unit_col = header.index("unit") if "unit" in header else None
-    out: list[tuple[str, str, int]] = []
+    out: list[tuple[str, str, str, int]] = []
     for i, row in enumerate(rows[1:], start=2):
         if not row or all(not c.strip() for c in row):
             continue
@@ -170,7 +169,7 @@ def read_offsets_csv(path: Path) -> tuple[tuple[str, str, int], ...]:
         if not math.isfinite(number) or not joint:
             raise _refuse(path, f"row {i}: needs a joint name and a finite offset", i)
         unit = row[unit_col].strip() if unit_col is not None else ""
-        out.append((joint, f"{value} {unit}" if unit else value, i))
+        out.append((joint, value, unit, i))
     if not out:
         raise _refuse(path, "no rows")
     return tuple(out)

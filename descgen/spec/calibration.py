@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
-from descgen.codes.spec import CAL001, CAL002, CAL003, CAL004
+from descgen.codes.spec import CAL001, CAL002, CAL003, CAL004, CAL005
 from descgen.core import model as m
+from descgen.core.findings import Finding, Where
 from descgen.physics.calibration import calibrated_origin, correction_size
 from descgen.spec import models as s
 from descgen.spec.convert import Converter
@@ -117,9 +119,36 @@ def _large(conv: Converter, j: m.Joint, e: m.JointCalibration) -> None:
         subject = f"sensor:{e.sensor}" if e.sensor else f"joint:{e.joint}"
         conv.error(
             CAL004,
-            f"the calibration moves {e.joint!r}'s child frame by {shift * 1000:.1f} mm and turns it by "
+            f"the calibration moves the child frame of joint {e.joint!r} by {shift * 1000:.1f} mm and turns it by "
             f"{math.degrees(turn):.2f} deg from the nominal model",
             "check the unit and the frame the values are in; if the nominal value is wrong, correct it in the spec",
             subject,
             e.where,
         )
+
+
+def drift_check(spec_path: Path, ds: s.DriftCheckSpec, where: Where) -> tuple[m.DriftCheck | None, list[Finding]]:
+    """``calibration.drift`` with its samples resolved beside the spec (CAL005 when the path is
+    absolute, leaves the project or is not a regular file)."""
+    from descgen.meshes.paths import project_root
+
+    written = ds.samples
+    target = (spec_path.parent / written).resolve()
+    why = None
+    if Path(written).is_absolute():
+        why = "is absolute"
+    elif not target.is_relative_to(project_root(spec_path).resolve()):
+        why = f"leaves the project folder {project_root(spec_path).name}/"
+    elif not target.is_file():
+        why = "is not a regular file" if target.exists() else "does not exist"
+    if why is not None:
+        return None, [
+            CAL005.finding(
+                f"calibration.drift.samples {written!r} {why}",
+                "name a CSV relative to the spec, inside the project",
+                "calibration",
+                where,
+            )
+        ]
+    tolerance = ds.tolerance.si if ds.tolerance is not None else 0.001
+    return m.DriftCheck(str(target), ds.frame, ds.base, tolerance, tuple(ds.parameters), where), []

@@ -21,6 +21,7 @@ from descgen.core.units import Range
 from descgen.infra import collector
 from descgen.infra.yamlsource import Document, Path_, load, loads
 from descgen.meshes.paths import resolve_spec
+from descgen.spec import calibration
 from descgen.spec.build import Builder
 from descgen.spec.errors import data_path, findings_from
 from descgen.spec.models import RobotSpec
@@ -118,6 +119,11 @@ def _build(
     if place is not None:  # before the rules, so they see the files (and a missing one is an input error)
         robot, unresolved = resolve_spec(robot, spec, doc.where, place.spec, place.package_paths)
         problems += unresolved
+        if spec.calibration is not None and spec.calibration.drift is not None:
+            check, refused = calibration.drift_check(
+                place.spec, spec.calibration.drift, doc.where(("calibration", "drift", "samples"))
+            )
+            robot, problems = replace(robot, drift_check=check), problems + refused
     if spec.require_sources:
         problems += missing_sources(doc, spec)
     digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()

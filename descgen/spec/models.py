@@ -1396,6 +1396,25 @@ class SensorCalibrationSpec(Base):
     """The calibrated pose of the sensor frame in the sensor's parent, e.g. from a hand-eye calibration."""
 
 
+class DriftCheckSpec(Base):
+    """Samples of the running robot that `report` compares the model with (`descgen drift`), shown on the evidence
+    page as the residual over time."""
+
+    samples: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]
+    """A CSV of samples relative to the spec, inside the project: `time`, one column per moving joint of the chain
+    (rad, m), then `x,y,z` (m) of `frame` in `base` (CAL005)."""
+    frame: ElementName
+    """The link whose position was measured, e.g. `tool_link`."""
+    base: ElementName | None = None
+    """The link the positions are in; default the root link."""
+    tolerance: Tolerance | None = None
+    """The 95th percentile of the residual beyond which the robot has drifted (the page's verdict fails); default
+    `1 mm`."""
+    parameters: list[Annotated[OneLine, StringConstraints(min_length=1, max_length=200)]] = []
+    """Patterns of the calibration parameters to fit, e.g. `joint:*:offset`; default every offset and origin
+    component on the chain."""
+
+
 class CalibrationSpec(Base):
     """The robot as measured: corrections on top of the nominal model, each citing its provenance. generate writes
     them to `config/calibration/default.yaml`, which the Xacro reads (`calibration:=FILE` picks another, e.g.
@@ -1407,6 +1426,9 @@ class CalibrationSpec(Base):
     """Per joint (by name): its zero offset and origin correction."""
     sensors: dict[Name, SensorCalibrationSpec] = {}
     """Per sensor of `sensors:` (by name): its calibrated mount."""
+    drift: DriftCheckSpec | None = None
+    """Samples of the running robot that `report` compares the calibrated model with (section 11 of the evidence
+    page: the residual over time, and the parameters that explain it)."""
 
 
 class WaiverSpec(Base):

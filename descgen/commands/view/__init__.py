@@ -20,7 +20,7 @@ import numpy as np
 from descgen.codes.command import VIEW001
 from descgen.core.findings import Finding, InputError, Severity, Where
 from descgen.core.model import ONE_DOF, Mesh, Robot
-from descgen.physics import kinematics, mimic
+from descgen.physics import calibration, kinematics, mimic
 from descgen.physics import poses as known_poses
 
 if TYPE_CHECKING:
@@ -83,7 +83,7 @@ def markers(robot: Robot, pose: str) -> list[Marker]:
     kp = next((k for k in robot.known_poses if k.name == pose), None)
     if kp is None:
         return []
-    poses = kinematics.forward(robot, dict(kp.joints))
+    poses = kinematics.forward(calibration.for_pose(robot, kp), dict(kp.joints))  # as poses judges it
     out = []
     for fm in kp.frames:
         if fm.frame not in poses:
