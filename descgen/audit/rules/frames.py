@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections import defaultdict
 from collections.abc import Iterator
 
@@ -168,3 +169,218 @@ def desired_on_joint_states(robot: Robot) -> Iterator[Finding]:
                     f"joint '{j.name}' has several /joint_states publishers: {feed}",
                     "keep one publisher per joint (joint_state_broadcaster on a ros2_control robot)",
                 )
+
+
+# -- where frames sit against the body ---------------------------------------------------------
+
+Box = tuple[tuple[float, float, float], tuple[float, float, float]]
+FAR = 0.5  # a frame farther outside the body than this share of its largest side is reported
+SLIPS = ((10.0, "10"), (100.0, "100"), (1000.0, "1000"), (25.4, "25.4 (mm written as inches)"))
+
+
+def _union(a: Box | None, b: Box) -> Box:
+    if a is None:
+        return b
+    return (
+        (min(a[0][0], b[0][0]), min(a[0][1], b[0][1]), min(a[0][2], b[0][2])),
+        (max(a[1][0], b[1][0]), max(a[1][1], b[1][1]), max(a[1][2], b[1][2])),
+    )
+
+
+def _link_boxes(robot: Robot) -> dict[str, Box]:
+    """Each link's shapes (primitives and measured meshes) as one axis-aligned box in the root
+    frame, with every joint at zero."""
+    from descgen.meshes.load import box_in_metres, mesh_shapes
+    from descgen.physics.extent import extent, shape_hull
+    from descgen.physics.rigid import compose, frame, placed_box
+    from descgen.physics.zero_pose import at_zero
+
+    poses = at_zero(robot)
+    out: dict[str, Box] = {}
+    for lk in robot.links:
+        at_link = poses.get(lk.name)
+        if at_link is None:
+            continue
+        for shape in lk.shapes():
+            hull = shape_hull(shape)
+            if hull is not None:
+                lo, hi = extent(hull, at_link)
+                pad = hull.pad
+                box: Box = ((lo[0] - pad, lo[1] - pad, lo[2] - pad), (hi[0] + pad, hi[1] + pad, hi[2] + pad))
+                out[lk.name] = _union(out.get(lk.name), box)
+    for lk, shape, mesh, facts in mesh_shapes(robot):
+        at_link = poses.get(lk.name)
+        corners = box_in_metres(facts, mesh.scale)
+        if at_link is None or corners is None:
+            continue
+        low = tuple(min(a, b) for a, b in zip(*corners, strict=True))
+        high = tuple(max(a, b) for a, b in zip(*corners, strict=True))
+        placed = placed_box(low, high, compose(at_link, frame(shape.origin.xyz, shape.origin.rpy)))
+        out[lk.name] = _union(out.get(lk.name), placed)
+    return out
+
+
+def _outside(box: Box, p: tuple[float, float, float]) -> float:
+    """How far ``p`` is from ``box`` (0 inside)."""
+    d = [max(box[0][i] - p[i], 0.0, p[i] - box[1][i]) for i in range(3)]
+    return float((d[0] ** 2 + d[1] ** 2 + d[2] ** 2) ** 0.5)
+
+
+def _welded_leaf(robot: Robot, link: str) -> list[str] | None:
+    """``link`` and everything below it when only fixed joints hang there (a sensor mount, a
+    frame); None when something below moves."""
+    below = [link, *robot.descendants(link)]
+    for name in below[1:]:
+        j = robot.parent_joint(name)
+        if j is None or j.type != "fixed":
+            return None
+    return below
+
+
+@rule("FRAME006", "frame-far-outside-body", "warning")
+def frame_far_outside_body(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Places the robot at zero and boxes its geometry (primitives and meshes). A frame on a
+    fixed joint (a sensor, a button, a tool point; with anything welded below it) that lies
+    outside the box of everything else by more than half the box's largest side is reported,
+    with the factor (10, 100, 1000, 25.4) that would bring its joint's offset inside when one
+    does.
+    ## Why is this bad?
+    A sensor frame twice the body's radius from its centre is a unit slip (millimetres
+    written as centimetres), not a mount: every measurement in that frame lands in the wrong
+    place, and no parser can tell.
+    """
+    from descgen.physics.rigid import apply
+    from descgen.physics.zero_pose import at_zero
+
+    boxes = _link_boxes(robot)
+    if not boxes:
+        return
+    root = robot.root()
+    poses = at_zero(robot)
+    for j in robot.joints:
+        if j.type != "fixed" or j.child is None or j.parent is None or j.child == root:
+            continue
+        leaf = _welded_leaf(robot, j.child)
+        if leaf is None or j.child not in poses or j.parent not in poses:
+            continue
+        body: Box | None = None
+        for name, box in boxes.items():
+            if name not in leaf:
+                body = _union(body, box)
+        if body is None:
+            continue
+        side = max(body[1][i] - body[0][i] for i in range(3))
+        where = poses[j.child][1]
+        away = _outside(body, where)
+        if side <= 0 or away <= FAR * side:
+            continue
+        hint = "check the joint's origin (its unit, its sign), or the body's geometry"
+        for factor, said in SLIPS:
+            nearer = apply(poses[j.parent], tuple(c / factor for c in j.origin.xyz))
+            if _outside(body, nearer) <= 0.05 * side:
+                shown = ", ".join(f"{c / factor * 1000:.4g}" for c in j.origin.xyz)
+                hint = (
+                    f"the origin looks {said} times too large: ({shown}) mm would put it on the body; "
+                    "fix the unit of the joint's xyz"
+                )
+                break
+        yield at(
+            "FRAME006",
+            j,
+            f"frame '{j.child}' (joint '{j.name}') is {away * 1000:.0f} mm outside the robot's body, whose "
+            f"largest side is {side * 1000:.0f} mm",
+            hint,
+        )
+
+
+_SIDE = {
+    "left": "right",
+    "right": "left",
+    "front": "back",
+    "back": "front",
+    "rear": "front",
+    "top": "bottom",
+    "bottom": "top",
+}
+# REP 103 (x forward, y left, z up): the axis a side word names, and its sign
+_AXIS = {
+    "left": (1, 1.0),
+    "right": (1, -1.0),
+    "front": (0, 1.0),
+    "back": (0, -1.0),
+    "rear": (0, -1.0),
+    "top": (2, 1.0),
+    "bottom": (2, -1.0),
+}
+_TOKEN = re.compile(r"[A-Za-z]+|[0-9]+|[^A-Za-z0-9]+")
+
+
+def _mirrors(name: str) -> Iterator[tuple[str, str]]:
+    """(the name with one of its side words swapped, that word), for each side word in it:
+    ``bump_front_left`` pairs with ``bump_front_right`` and with ``bump_back_left``."""
+    tokens = _TOKEN.findall(name)
+    for i, t in enumerate(tokens):
+        word = t.lower()
+        if word not in _SIDE:
+            continue
+        other = _SIDE[word]  # rear pairs with front from its side; front pairs with back
+        swapped = other.upper() if t.isupper() else other.capitalize() if t[0].isupper() else other
+        yield "".join([*tokens[:i], swapped, *tokens[i + 1 :]]), word
+
+
+@rule("FRAME007", "side-name-against-rep103", "warning")
+def side_name_against_rep103(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Pairs links whose names differ only by a side word (left/right, front/back or rear,
+    top/bottom) that both belong to the robot's body (the link they share is welded to the
+    root by fixed joints) and compares where they sit, with every joint at zero, in the root
+    link's frame: REP 103 has y to the left, x forward and z up, so the "left" one should have
+    the larger y, the "front" one the larger x, the "top" one the larger z. Pairs past a
+    moving joint (a gripper's fingers) follow the part's own convention and are not judged.
+    The pair is reported when they sit the other way round.
+    ## Why is this bad?
+    A left bumper at the right is a swapped sign or a mirrored mount: the robot reacts to a
+    bump on the wrong side, and the frame tree looks right to every parser.
+    """
+    from descgen.physics.zero_pose import at_zero, relative
+
+    names = {lk.name for lk in robot.links}
+    poses = at_zero(robot)
+    done: set[frozenset[str]] = set()
+    pairs = [(lk.name, other, word) for lk in robot.links for other, word in _mirrors(lk.name) if other in names]
+    for name, other, word in pairs:
+        if frozenset((name, other)) in done:
+            continue
+        done.add(frozenset((name, other)))
+        lk = robot.link(name)
+        assert lk is not None
+        # nearest first (path_to_root runs from the root down)
+        up = [lk.name, *(j.parent for j in reversed(robot.path_to_root(lk.name)) if j.parent)]
+        theirs = {other, *(j.parent for j in robot.path_to_root(other) if j.parent)}
+        common = next((x for x in up if x in theirs), None)
+        if common is None or lk.name not in poses or other not in poses:
+            continue
+        # REP 103's sides are the body's: compare in the root link, when the link they share is
+        # welded to it. Past a moving joint (a gripper's fingers) the words follow the part's own
+        # convention, which varies by vendor: not judged.
+        while (j := robot.parent_joint(common)) is not None and j.type == "fixed" and j.parent is not None:
+            common = j.parent
+        if robot.parent_joint(common) is not None:
+            continue
+        a, b = relative(poses, lk.name, common), relative(poses, other, common)
+        if a is None or b is None:
+            continue
+        axis, sign = _AXIS[word]
+        gap = (a[1][axis] - b[1][axis]) * sign  # > 0 when this one is on its own side of the other
+        if gap < -1e-3:
+            letter = "xyz"[axis]
+            yield at(
+                "FRAME007",
+                robot.parent_joint(lk.name) or lk,
+                f"'{lk.name}' is {-gap * 1000:.0f} mm to the {_SIDE[word]} of '{other}' in '{common}' "
+                f"({letter} {a[1][axis] * 1000:.0f} mm against {b[1][axis] * 1000:.0f} mm): REP 103 puts "
+                f"{word} at {'+' if sign > 0 else '-'}{letter}",
+                "swap the two names, or the sign of the joint's offset (REP 103: x forward, y left, z up)",
+                subject=f"link:{lk.name}",
+            )
