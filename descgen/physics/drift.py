@@ -118,6 +118,12 @@ class Model:
         parent's z) or a zero offset of a revolute joint (about its axis) moves it by ω x (frame -
         joint origin); a prismatic offset moves it along the axis. Checked against central
         differences and pinocchio in tests/test_calibration.py."""
+        return self.linearised(q, theta, n, only)[0]
+
+    def linearised(
+        self, q: dict[str, np.ndarray], theta: np.ndarray, n: int, only: Sequence[int] | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(:meth:`jacobian`, the frame's positions): both from one pass of the kinematics."""
         pos, _rot, kept = self._sweep(q, theta, n)
         want = list(range(len(theta))) if only is None else list(only)
         out = np.zeros((n, 3, len(want)))
@@ -152,7 +158,7 @@ class Model:
                 else:  # yaw
                     w = r_parent[:, :, 2]
                 out[:, :, col] = np.cross(w, lever)
-        return out.reshape(3 * n, len(want))
+        return out.reshape(3 * n, len(want)), pos
 
     def jacobian_numeric(self, q: dict[str, np.ndarray], theta: np.ndarray, n: int) -> np.ndarray:
         """Central differences of :meth:`forward`: the check of :meth:`jacobian` in the tests."""
@@ -187,10 +193,8 @@ def _rows(
 ) -> np.ndarray:
     """[J | r] of samples lo:hi (3 rows each) for the parameters ``cols``."""
     part = {k: v[lo:hi] for k, v in q.items()}
-    n = hi - lo
-    pos, _r = model.forward(part, theta, n)
-    r = (measured[lo:hi] - pos).reshape(-1)
-    return np.column_stack([model.jacobian(part, theta, n, cols), r])
+    jac, pos = model.linearised(part, theta, hi - lo, cols)
+    return np.column_stack([jac, (measured[lo:hi] - pos).reshape(-1)])
 
 
 def _fold(tri: np.ndarray | None, rows: np.ndarray) -> np.ndarray:

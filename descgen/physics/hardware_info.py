@@ -10,18 +10,26 @@ from __future__ import annotations
 
 from descgen.core.model import ControlJoint, Robot
 
+# what get_attribute_value strips before parse_bool lowercases (component_parser.cpp, jazzy
+# since hardware_interface 4.43.0; docs/ros2_control_parser_jazzy.md)
+WHITESPACE = " \t\n\r\f\v"
+
+
+def parsed_bool(text: str) -> bool | None:
+    """A boolean attribute as Jazzy reads it: stripped, then true/false in any case; None for
+    anything else (parse_bool throws std::invalid_argument)."""
+    return {"true": True, "false": False}.get(text.strip(WHITESPACE).lower())
+
 
 def mimic_attribute(cj: ControlJoint) -> bool | None:
-    """The ``mimic`` attribute as Jazzy's parse_bool reads it: true/false in any case; None
-    when absent (NOT_SET). Anything else throws std::invalid_argument (CTRL043)."""
-    if cj.mimic is None:
-        return None
-    return {"true": True, "false": False}.get(cj.mimic.lower())  # parse_bool lowercases, never strips
+    """The ``mimic`` attribute as Jazzy's parse_bool reads it; None when absent (NOT_SET) or
+    not a boolean, which throws (CTRL043)."""
+    return None if cj.mimic is None else parsed_bool(cj.mimic)
 
 
 def valid_mimic_attribute(cj: ControlJoint) -> bool:
     """False when parse_bool would throw: the attribute is set and is neither true nor false."""
-    return cj.mimic is None or cj.mimic.lower() in ("true", "false")
+    return cj.mimic is None or parsed_bool(cj.mimic) is not None
 
 
 def active_mimic(robot: Robot, cj: ControlJoint) -> bool:

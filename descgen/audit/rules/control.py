@@ -575,8 +575,9 @@ def mimic_attribute_invalid(robot: Robot) -> Iterator[Finding]:
     """## What it does
     Finds a ros2_control `<joint mimic="...">` whose value is not `true` or `false`.
     ## Why is this bad?
-    Jazzy reads it with parse_bool, which accepts only true/false (any case) and throws
-    std::invalid_argument otherwise; the parser does not catch it, so loading fails.
+    Jazzy strips the value of blanks and reads it with parse_bool, which accepts only
+    true/false (any case) and throws std::invalid_argument otherwise; the parser does not
+    catch it, so loading fails.
     ## Example
     `mimic="1"`, `mimic="yes"`.
     ## Use instead

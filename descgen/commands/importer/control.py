@@ -31,6 +31,7 @@ from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.infra.safeio import read_bounded
 from descgen.physics import derive
+from descgen.physics.hardware_info import parsed_bool
 from descgen.read import params
 from descgen.read.controllers import Parsed, manager_view, parse_substituted
 from descgen.spec.convert import EFFORT, POSITION, VELOCITY
@@ -117,12 +118,18 @@ def _params_problem(e: etree._Element, owner: str) -> str | None:
     return None
 
 
+def _not_plain_bool(text: str | None) -> bool:
+    """A boolean attribute the spec's true/false cannot give back as written: one Jazzy
+    refuses, or one it reads only after stripping whitespace (kept verbatim in pass-through)."""
+    return text is not None and (parsed_bool(text) is None or text != text.strip())
+
+
 def _joint_problem(je: etree._Element, robot: m.Robot) -> str | None:
     name = je.get("name", "")
     owner = f"joint '{name}'"
     if set(je.attrib) - {"name", "mimic"}:
         return f"{owner} has attributes {sorted(set(je.attrib) - {'name', 'mimic'})}"
-    if je.get("mimic") is not None and je.get("mimic", "").lower() not in ("true", "false"):
+    if _not_plain_bool(je.get("mimic")):
         return f"{owner} has mimic='{je.get('mimic')}' (ros2_control reads only true/false)"
     if (p := _params_problem(je, owner)) is not None:
         return p
@@ -150,7 +157,7 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
     name = block.get("name", "")
     if set(block.attrib) - {"name", "type", "is_async"}:
         return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type', 'is_async'})}"
-    if block.get("is_async") is not None and block.get("is_async", "").lower() not in ("true", "false"):
+    if _not_plain_bool(block.get("is_async")):
         return f"the block has is_async='{block.get('is_async')}' (ros2_control reads only true/false)"
     if not _NAME.fullmatch(name):
         return f"the block name '{name}' is not a plain identifier"
