@@ -49,3 +49,24 @@ def test_block_type_and_is_async_are_read(tmp_path: Path, kind: str, attr: str, 
     assert (first.name, first.type, first.is_async) == ("first", kind.strip(), expected)
     assert (second.name, second.type, second.is_async) == ("second", "system", None)  # the parser's default
     assert rc.is_async is expected
+
+
+def test_a_block_jazzy_refuses_is_one_verdict_from_import_to_audit(tmp_path: Path) -> None:
+    """tests/rules/CTRL066/bad3.urdf holds four places Jazzy's parser throws. import keeps the
+    block verbatim (pass-through) and waives the four as imported; validate and check judge the
+    pass-through as audit judges the generated URDF: the same four, waived, and no error left."""
+    from .conftest import ROOT
+    from .helpers import cli
+
+    spec = tmp_path / "specs" / "a.yaml"
+    ran = cli("import", ROOT / "tests" / "rules" / "CTRL066" / "bad3.urdf", "-o", spec, cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr[-1500:]
+    ran = cli("validate", spec, cwd=tmp_path)
+    assert ran.returncode == 0 and ran.stderr.count("[CTRL066]") == 4, ran.stderr[-2000:]
+    assert cli("generate", spec, cwd=tmp_path).returncode == 0
+    assert cli("check", spec, cwd=tmp_path).returncode == 0
+    urdf = tmp_path / "generated" / "arm_description" / "urdf" / "arm.urdf"
+    ran = cli("audit", urdf, cwd=tmp_path)
+    assert ran.returncode == 0 and "0 error, 1 warning, 0 info, 4 waived" in ran.stdout, ran.stdout + ran.stderr[-1500:]
+    ran = cli("audit", urdf, "--no-waivers", cwd=tmp_path)
+    assert ran.returncode == 1 and ran.stderr.count("error[CTRL066]") == 4, ran.stderr[-1500:]

@@ -623,6 +623,10 @@ class Robot:
     calibration: tuple[JointCalibration, ...] = ()
     calibration_sources: tuple[CalibrationSource, ...] = ()
     drift_check: DriftCheck | None = None
+    # (block name, Jazzy's component parser's own message, where) for every throw the parser would
+    # raise on the <ros2_control> blocks of a read description or of a spec's pass-through
+    # (descgen/physics/component_parser.py; CTRL066)
+    control_refusals: tuple[tuple[str, str, Where], ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

@@ -22,6 +22,7 @@ from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.infra.safeio import MAX_DESCRIPTION_BYTES, MIB, read_bounded
+from descgen.physics import component_parser
 
 MAX_BYTES = MAX_DESCRIPTION_BYTES  # also bounds an expanded Xacro
 _LIBXML_AT = re.compile(r",? line \d+, column \d+$")
@@ -369,9 +370,12 @@ class _Reader:
             out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value"), ie.get("data_type")))
         return tuple(out)
 
-    def ros2_control(self, blocks: list[etree._Element], root: etree._Element) -> m.Ros2Control | None:
+    def ros2_control(
+        self, blocks: list[etree._Element], root: etree._Element
+    ) -> tuple[m.Ros2Control | None, tuple[tuple[str, str, Where], ...]]:
+        """The blocks as one model, and where Jazzy's parser would throw on them (CTRL066)."""
         if not blocks:
-            return None
+            return None, ()
         # a robot may split its hardware over several <ros2_control> blocks (one per bus);
         # the model keeps the first block's name and plugin, every block's hardware in
         # ``blocks``, and every block's joints and sensors (each joint knows its block:
@@ -379,6 +383,11 @@ class _Reader:
         joints = []
         sensors = []
         hardware = []
+        refused = [
+            ((block.get("name") or "").strip(), message, self.where(e))
+            for block in blocks
+            for message, e in component_parser.refusals(block)
+        ]
         for block in blocks:
             hw = block.find("hardware")
             hardware.append(
@@ -431,7 +440,7 @@ class _Reader:
             blocks=tuple(hardware),
             sim_plugins=sim,
             is_async=b.is_async,
-        )
+        ), tuple(refused)
 
 
 def _bool(text: str | None) -> bool | None:
@@ -489,14 +498,16 @@ def read_urdf_text(
                 r.where(root),
             )
         )
+    rc, refused = r.ros2_control(root.findall("ros2_control"), root)
     robot = m.Robot(
         root.get("name", ""),
         tuple(r.link(e) for e in root.findall("link")),
         tuple(r.joint(e) for e in root.findall("joint")),
         tuple(r.material(e) for e in root.findall("material")),
-        ros2_control=r.ros2_control(root.findall("ros2_control"), root),
+        ros2_control=rc,
         where=r.where(root),
         sdf_preserved_joints=_sdf_preserved(root),
+        control_refusals=refused,
     )
     return robot, r.findings
 

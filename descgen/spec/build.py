@@ -103,6 +103,8 @@ class Builder:
             calibration=layer.calibration if layer else (),
             calibration_sources=layer.calibration_sources if layer else (),
         )
+        if spec.passthrough:  # a block kept verbatim is judged as Jazzy reads it (one verdict with audit)
+            robot = replace(robot, control_refusals=self._refusals(spec))
         if rc is not None and spec.passthrough:
             # a Gazebo plugin kept in pass-through is the robot's, as in the description it came
             # from: the rules that judge it (CTRL047) see it in the spec too (one verdict)
@@ -115,6 +117,24 @@ class Builder:
         if spec.moveit is not None:
             robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
         return robot
+
+    def _refusals(self, spec: Any) -> tuple[tuple[str, str, Where], ...]:
+        """Where Jazzy's parser would throw on a pass-through ``<ros2_control>`` (CTRL066), at
+        the pass-through entry."""
+        from lxml import etree
+
+        from descgen.physics.component_parser import refusals
+
+        out: list[tuple[str, str, Where]] = []
+        for i, p in enumerate(spec.passthrough):
+            try:
+                e = etree.fromstring(p.xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+            except etree.XMLSyntaxError:
+                continue  # refused with its own finding (descgen/spec/passthrough.py)
+            if e.tag == "ros2_control":
+                at = self.conv.where(("passthrough", i))
+                out += [((e.get("name") or "").strip(), message, at) for message, _ in refusals(e)]
+        return tuple(out)
 
     def _sim_plugins(self, spec: Any) -> tuple[tuple[str, Where], ...]:
         """(filename, where) of every ``<gazebo><plugin filename>`` of the pass-through elements."""

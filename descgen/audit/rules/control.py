@@ -790,3 +790,34 @@ def controller_params_refused(robot: Robot) -> Iterator[Finding]:
                 "set it in the controller's params",
                 subject=f"controller:{c.name}",
             )
+
+
+@rule("CTRL066", "ros2-control-parser-throws", "error")
+def ros2_control_parser_throws(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Reads each `<ros2_control>` block as Jazzy's component parser does
+    (hardware_interface/src/component_parser.cpp, jazzy) and reports every place it throws,
+    in the parser's own words: a required attribute missing (`name`, `type` on the block;
+    `name` on joints, sensors, gpios, interfaces and transmissions; `enable` on `<limits>`;
+    `role` on a transmission's joints and actuators), a `<param>` without a name, a
+    `<hardware>` or `<transmission>` without `<plugin>`, a child of `<ros2_control>` other than
+    hardware, properties, joint, sensor, gpio or transmission, and a boolean attribute that is
+    not true or false (after stripping blanks).
+    ## Why is this bad?
+    The parser stops at the first throw, and the controller manager does not start: no
+    controller runs. xacro and check_urdf accept the file (it is valid XML and valid URDF).
+    ## Example
+    `<ros2_control name="arm">` (no `type`), `<param>1.0</param>`, `<hardware/>`.
+    ## Use instead
+    `<ros2_control name="arm" type="system">`, `<param name="gain">1.0</param>`,
+    `<hardware><plugin>mock_components/GenericSystem</plugin></hardware>`.
+    """
+    for block, message, where in robot.control_refusals:
+        yield Finding(
+            "CTRL066",
+            "error",
+            f"Jazzy's ros2_control parser throws: {message}",
+            "fix the element as the message says (docs/ros2_control_parser_jazzy.md lists each case)",
+            f"ros2_control:{block}",
+            where,
+        )
