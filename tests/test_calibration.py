@@ -658,3 +658,19 @@ def test_nothing_significant_suggests_an_empty_block(tmp_path: Path) -> None:
     spec = tmp_path / "wa.yaml"
     spec.write_text(EXAMPLE.read_text() + "\n" + report["suggested"])
     assert cli("validate", spec, cwd=tmp_path).returncode == 0
+
+
+def test_a_fifo_or_a_device_is_refused_not_waited_on(tmp_path: Path) -> None:
+    """A FIFO would block open() forever and /dev/zero would never end: both are refused at once."""
+    import os
+
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    spec = tmp_path / "wa.yaml"
+    spec.write_text(EXAMPLE.read_text())
+    ran = cli("import-calibration", spec, fifo, "--format", "csv", cwd=tmp_path, timeout=60)
+    assert ran.returncode == 2 and "error[CAL010]" in ran.stderr and "FIFO" in ran.stderr
+    for bad in (fifo, Path("/dev/zero")):
+        ran = cli("drift", spec, "--samples", bad, "--frame", "tool_link", cwd=tmp_path, timeout=60)
+        assert ran.returncode == 2 and "error[CAL012]" in ran.stderr, ran.stderr[-800:]
+    assert spec.read_text() == EXAMPLE.read_text()

@@ -73,13 +73,10 @@ def _refuse(path: Path, why: str, line: int = 0) -> InputError:
 
 
 def _text(path: Path) -> str:
-    try:
-        with path.open("rb") as fh:
-            data = fh.read(MAX_BYTES + 1)
-    except OSError as exc:
-        raise _refuse(path, exc.strerror or str(exc)) from None
-    if len(data) > MAX_BYTES:
-        raise _refuse(path, f"larger than {MAX_BYTES // 2**20} MiB")
+    from descgen.infra.safeio import Codes, read_bounded
+
+    # a regular file of at most MAX_BYTES, or CAL010 (a FIFO or a device would never end)
+    data = read_bounded(path, "calibration", MAX_BYTES, codes=Codes(CAL010, CAL010, CAL010))
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError:

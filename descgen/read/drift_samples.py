@@ -49,9 +49,11 @@ def refuse(path: Path, why: str, hint: str, line: int = 0) -> InputError:
 
 def read_csv(path: Path, joints: Sequence[str]) -> Samples:
     """The samples of a CSV, read row by row into one flat array of numbers (8 bytes a value)."""
+    from descgen.infra.safeio import Codes, check_file
+
+    # a regular file within the bound, or CAL012 (a FIFO or a device would never end)
+    check_file(path, "samples CSV", MAX_CSV_BYTES, codes=Codes(CAL012, CAL012, CAL012))
     try:
-        if path.stat().st_size > MAX_CSV_BYTES:
-            raise refuse(path, f"larger than {MAX_CSV_BYTES // 2**20} MiB", "split the samples")
         with path.open(encoding="utf-8", newline="") as fh:
             return _read_csv(path, csv.reader(fh), joints)
     except (OSError, UnicodeDecodeError) as exc:
