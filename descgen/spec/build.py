@@ -118,35 +118,36 @@ class Builder:
             robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
         return robot
 
+    def _passthrough(self, spec: Any, tag: str) -> list[tuple[Any, Where]]:
+        """The pass-through elements of ``tag``, parsed, each with its place in the spec (one
+        that does not parse is refused with its own finding: descgen/spec/passthrough.py)."""
+        from lxml import etree
+
+        out = []
+        for i, p in enumerate(spec.passthrough):
+            try:
+                e = etree.fromstring(p.xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+            except etree.XMLSyntaxError:
+                continue
+            if e.tag == tag:
+                out.append((e, self.conv.where(("passthrough", i))))
+        return out
+
     def _refusals(self, spec: Any) -> tuple[tuple[str, str, Where], ...]:
         """Where Jazzy's parser would throw on a pass-through ``<ros2_control>`` (CTRL066), at
         the pass-through entry."""
-        from lxml import etree
-
         from descgen.physics.component_parser import refusals
 
-        out: list[tuple[str, str, Where]] = []
-        for i, p in enumerate(spec.passthrough):
-            try:
-                e = etree.fromstring(p.xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-            except etree.XMLSyntaxError:
-                continue  # refused with its own finding (descgen/spec/passthrough.py)
-            if e.tag == "ros2_control":
-                at = self.conv.where(("passthrough", i))
-                out += [((e.get("name") or "").strip(), message, at) for message, _ in refusals(e)]
-        return tuple(out)
+        return tuple(
+            ((e.get("name") or "").strip(), message, at)
+            for e, at in self._passthrough(spec, "ros2_control")
+            for message, _ in refusals(e)
+        )
 
     def _sim_plugins(self, spec: Any) -> tuple[tuple[str, Where], ...]:
         """(filename, where) of every ``<gazebo><plugin filename>`` of the pass-through elements."""
-        from lxml import etree
-
-        out: list[tuple[str, Where]] = []
-        for i, p in enumerate(spec.passthrough):
-            try:
-                e = etree.fromstring(p.xml.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-            except etree.XMLSyntaxError:
-                continue  # refused with its own finding (descgen/spec/passthrough.py)
-            if e.tag == "gazebo":
-                at = self.conv.where(("passthrough", i))
-                out += [((pe.get("filename") or "").strip(), at) for pe in e.findall("plugin")]
-        return tuple(out)
+        return tuple(
+            ((pe.get("filename") or "").strip(), at)
+            for e, at in self._passthrough(spec, "gazebo")
+            for pe in e.findall("plugin")
+        )
