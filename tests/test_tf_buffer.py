@@ -81,6 +81,12 @@ def random_script(seed: int) -> dict[str, object]:
         else:
             time = rng.randrange(0, 30) * 1_000_000_000 + rng.randrange(0, 1000) * 1_000_000
         lookups.append({"op": "lookup", "target": target, "source": source, "time": time})
+    if seed % 2:
+        # lookups between the inserts: a sample set between two others after a lookup
+        # interpolated across them must be used by the next lookup (nothing kept goes stale)
+        for lookup in lookups:
+            ops.insert(rng.randrange(len(ops) + 1), lookup)
+        return {"cache_ns": 10_000_000_000, "ops": ops}
     return {"cache_ns": 10_000_000_000, "ops": ops + lookups}
 
 
@@ -125,7 +131,7 @@ def test_same_outcomes_as_tf2(oracle: None) -> None:
         got = ours(script)
         assert len(got) == len(want)
         for i, (g, w) in enumerate(zip(got, want, strict=True)):
-            lookup = script["ops"][len(script["ops"]) - len(want) + i]  # type: ignore[index]
+            lookup = [op for op in script["ops"] if op["op"] == "lookup"][i]  # type: ignore[attr-defined]
             assert g["kind"] == w["kind"], (seed, lookup, g, w)
             if w["kind"] == "ok":
                 assert same_transform(g, w), (seed, lookup, g, w)
@@ -228,3 +234,24 @@ def test_the_cache_window_edges_as_tf2(oracle: None) -> None:
         for g, w in zip(got, want, strict=True):
             if w["kind"] == "ok":
                 assert same_transform(g, w) and g["stamp"] == w["stamp"], (order, g, w)
+
+
+def test_a_sample_set_between_two_after_a_lookup_is_used(oracle: None) -> None:
+    """Interpolating 1 s -> 3 s, then a sample at 1.5 s: the next lookup at 1.2 s interpolates
+    1 s -> 1.5 s, as tf2 does (a kept slerp span of 1 s -> 3 s would give the old rotation)."""
+    q1, q3, q15 = [0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0], [1.0, 0.0, 0.0, 0.0]
+    sec = 1_000_000_000
+
+    def sample(stamp: int, q: list[float]) -> dict[str, object]:
+        return {"op": "set", "parent": "a", "child": "b", "stamp": stamp, "t": [0.0, 0.0, 0.0], "q": q, "static": False}
+
+    def lookup(time: int) -> dict[str, object]:
+        return {"op": "lookup", "target": "a", "source": "b", "time": time}
+
+    ops = [sample(sec, q1), sample(3 * sec, q3), lookup(2 * sec), lookup(1200 * sec // 1000)]
+    ops += [sample(1500 * sec // 1000, q15), lookup(1200 * sec // 1000), lookup(2 * sec)]
+    script = {"cache_ns": 10 * sec, "ops": ops}
+    got, want = ours(script), theirs([script])[0]
+    assert [g["kind"] for g in got] == [w["kind"] for w in want] == ["ok"] * 4
+    assert all(same_transform(g, w) for g, w in zip(got, want, strict=True)), (got, want)
+    assert not same_transform(got[1], got[2])  # the new sample did change the answer

@@ -98,7 +98,7 @@ class _Cache:
     """One child frame's samples, oldest first, with the stamps in their own list so a
     lookup bisects it directly (no list rebuilt per call)."""
 
-    __slots__ = ("parents", "poses", "reparented", "stamps", "static")
+    __slots__ = ("parents", "poses", "reparented", "spans", "stamps", "static")
 
     def __init__(self, static: bool) -> None:
         self.static = static
@@ -107,6 +107,8 @@ class _Cache:
         self.poses: list[Pose] = []
         # whether the parent ever changed: if not, a walk needs no bisect to know the parent
         self.reparented = False
+        # older stamp -> what slerp needs of the span that starts there (see _pose)
+        self.spans: dict[int, tuple[int, float, float, float, float, float, float]] = {}
 
     def parent_at(self, time: int) -> str:
         """The parent the value at ``time`` hangs from, or tf2's TransformError."""
@@ -155,20 +157,41 @@ class _Cache:
 
 def _pose(cache: _Cache, time: int) -> Pose:
     """A cache's (interpolated) pose at ``time``: linear translation, slerp rotation."""
-    _, i, j, ratio = cache.locate(time)
+    s = cache.stamps
+    if cache.static or time == 0:
+        return cache.poses[-1]
+    if not s[0] < time <= s[-1]:  # at or outside the ends (or one sample): the general path
+        _, i, j, ratio = cache.locate(time)
+        if i == j:
+            return cache.poses[i]
+    else:  # locate's usual case, inline: this runs once per link of every lookup
+        j = bisect_left(s, time)
+        if s[j] == time:
+            return cache.poses[j]
+        i = j - 1
+        if cache.parents[i] != cache.parents[j]:
+            return cache.poses[i]  # tf2 does not interpolate across a re-parenting
+        ratio = (time - s[i]) / (s[j] - s[i])
     a = cache.poses[i]
-    if i == j:
-        return a
     b = cache.poses[j]
+    # tf2::Quaternion::slerp: the shorter way round. What depends on the two samples alone
+    # (the sign-corrected end, the angle, 1/sin) is kept per span, keyed by its older stamp
+    # and checked against its newer one (a sample inserted between makes a new span).
+    span = cache.spans.get(s[i])
+    if span is None or span[0] != s[j]:
+        bx, by, bz, bw = b[3], b[4], b[5], b[6]
+        dot = a[3] * bx + a[4] * by + a[5] * bz + a[6] * bw
+        if dot < 0:
+            bx, by, bz, bw, dot = -bx, -by, -bz, -bw, -dot
+        theta = math.acos(min(1.0, dot))
+        span = (s[j], bx, by, bz, bw, theta, 1.0 / math.sin(theta) if theta != 0 else 0.0)
+        if len(cache.spans) > 2 * len(s):  # spans of pruned samples: start again
+            cache.spans.clear()
+        cache.spans[s[i]] = span
+    _, bx, by, bz, bw, theta, d = span
     k = 1.0 - ratio
-    ax, ay, az, aw, bx, by, bz, bw = a[3], a[4], a[5], a[6], b[3], b[4], b[5], b[6]
-    # tf2::Quaternion::slerp, inline: the shorter way round
-    dot = ax * bx + ay * by + az * bz + aw * bw
-    if dot < 0:
-        bx, by, bz, bw, dot = -bx, -by, -bz, -bw, -dot
-    theta = math.acos(min(1.0, dot))
+    ax, ay, az, aw = a[3], a[4], a[5], a[6]
     if theta != 0:
-        d = 1.0 / math.sin(theta)
         s0, s1 = math.sin(k * theta) * d, math.sin(ratio * theta) * d
         ax, ay, az, aw = ax * s0 + bx * s1, ay * s0 + by * s1, az * s0 + bz * s1, aw * s0 + bw * s1
     return (k * a[0] + ratio * b[0], k * a[1] + ratio * b[1], k * a[2] + ratio * b[2], ax, ay, az, aw)
