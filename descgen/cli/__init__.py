@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from descgen import __version__
 from descgen.cli import arguments as types
+from descgen.codes.graph import GRAPH010
 from descgen.codes.importer import IMP007
 from descgen.codes.read import CTRL055
 from descgen.commands import text as cli_format
@@ -182,10 +183,27 @@ def _cmd_poses(args: argparse.Namespace) -> int:
     return exit_code(found)
 
 
+def _once(args: argparse.Namespace, option: str) -> Path | None:
+    """The one file given with ``--srdf`` or ``--controllers`` (repeated only with audit --together)."""
+    given: list[Path] = getattr(args, option) or []
+    if len(given) > 1:
+        raise InputError(
+            [
+                GRAPH010.finding(
+                    f"--{option} is given {len(given)} times; it names the one robot's file",
+                    f"give --{option} once (audit --together takes it once per URDF or Xacro, in their order)",
+                    "option",
+                    types.COMMAND_LINE,
+                )
+            ]
+        )
+    return given[0] if given else None
+
+
 def _description_options(args: argparse.Namespace) -> Options:
     from descgen.read.description import Options
 
-    if args.launch_arg and args.controllers is None:
+    if args.launch_arg and not args.controllers:
         # only a controllers YAML named with --controllers is read with launch arguments; a value
         # that changes nothing would let a user believe a $(var) was checked
         raise InputError(
@@ -200,8 +218,8 @@ def _description_options(args: argparse.Namespace) -> Options:
             ]
         )
     return Options(
-        args.srdf,
-        args.controllers,
+        _once(args, "srdf") if not getattr(args, "together", False) else None,
+        _once(args, "controllers") if not getattr(args, "together", False) else None,
         dict(args.xacro_arg or []),
         _packages(args),
         args.trust_xacro,
@@ -219,7 +237,12 @@ def _cmd_audit(args: argparse.Namespace) -> int:
     paths = [Path(p) for p in args.path]
     show = wanted(args.format == "text") and len(paths) > 1
     with counting(len(paths), "audit", "file", show) as step:
-        found, unusable = audit_paths(paths, options, args.jobs, step)
+        if args.together:
+            from descgen.read.description import audit_together
+
+            found, unusable = audit_together(paths, options, args.controllers or [], args.srdf or [], step)
+        else:
+            found, unusable = audit_paths(paths, options, args.jobs, step)
     if args.baseline is not None or args.write_baseline is not None:
         from descgen.commands import baseline
 
@@ -541,8 +564,18 @@ def _wait_bounds() -> tuple[float, float]:
 
 def description_options(p: argparse.ArgumentParser) -> None:
     """The options that say how to read a description someone else wrote."""
-    p.add_argument("--srdf", type=types.path, help="SRDF of the robot")
-    p.add_argument("--controllers", type=types.path, help="controller_manager YAML of the robot")
+    p.add_argument(
+        "--srdf",
+        action="append",
+        type=types.path,
+        help="SRDF of the robot (audit --together: once per URDF or Xacro, in their order)",
+    )
+    p.add_argument(
+        "--controllers",
+        action="append",
+        type=types.path,
+        help="controller_manager YAML of the robot (audit --together: once per URDF or Xacro, in their order)",
+    )
     p.add_argument(
         "--xacro-arg",
         action="append",
@@ -683,6 +716,12 @@ def parser() -> argparse.ArgumentParser:
     )
     a.add_argument(
         "--jobs", type=types.jobs, default=1, help="audit this many descriptions at once, in separate processes"
+    )
+    a.add_argument(
+        "--together",
+        action="store_true",
+        help="the descriptions are robots of one ROS graph: also report frames and joints two of them would both "
+        "publish, and controllers of one that name the other's joints (GRAPH codes; docs/multi-robot.md)",
     )
     a.set_defaults(fn=_cmd_audit)
 

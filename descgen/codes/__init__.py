@@ -19,6 +19,7 @@ from descgen.codes import (  # noqa: F401 - each stage registers its codes when 
     command,
     control,
     generate,
+    graph,
     importer,
     read,
     recording,

@@ -43,6 +43,7 @@ GROUPS: dict[str, str] = {
     "import": "descgen import (a URDF or Xacro becomes a spec)",
     "command": "the command line",
     "sweep": "descgen sweep (each joint through its range: directions and self-collisions)",
+    "graph": "many robots in one ROS graph (audit --together)",
 }
 
 CODE_PATTERN = re.compile(r"[A-Z]{3,6}\d{3}")

@@ -583,6 +583,17 @@ class Waiver:
 
 
 @record
+class NamePrefix:
+    """The prefix every name of one robot carries, so robots share a ROS graph (ROS 2 has no
+    tf_prefix): where a description declares it (a Xacro's ``prefix`` or ``tf_prefix`` argument,
+    the convention of ros2_control_demos and the UR description). NAME014 checks it."""
+
+    value: str
+    declared: str  # how the finding names the declaration, e.g. "the Xacro argument tf_prefix"
+    where: Where = NOWHERE
+
+
+@record
 class Robot:
     name: str
     links: tuple[Link, ...] = ()
@@ -627,6 +638,8 @@ class Robot:
     # raise on the <ros2_control> blocks of a read description or of a spec's pass-through
     # (descgen/physics/component_parser.py; CTRL066)
     control_refusals: tuple[tuple[str, str, Where], ...] = ()
+    # the declared name prefix (NAME014); None: the robot declares none
+    prefix: NamePrefix | None = None
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

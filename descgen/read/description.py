@@ -79,6 +79,10 @@ def load_description(
         from descgen.read.urdf import read_urdf_text
 
         robot, found = read_urdf_text(data, display, sources)
+        if kind == "xacro":
+            from descgen.read.xacro_prefix import declared
+
+            robot = dataclasses.replace(robot, prefix=declared(path, shown, options.xacro_args))
     robot, more = with_given_files(robot, options, given)
     found += more
     if kind == "spec":  # the spec loader resolved its meshes (and refused any it could not find)
@@ -208,6 +212,62 @@ def audit_paths(
     outcomes = map_in_processes(partial(_audit_one, options=options), paths, jobs, step)
     found = [f for fs, _ in outcomes for f in fs]
     return found, any(unusable for _, unusable in outcomes)
+
+
+def audit_together(
+    paths: Sequence[Path],
+    options: Options,
+    controllers: Sequence[Path],
+    srdfs: Sequence[Path],
+    step: Step | None = None,
+) -> tuple[list[Finding], bool]:
+    """``audit_paths`` for robots of one ROS graph, then what they get wrong beside each other
+    (descgen/audit/together.py). Each URDF or Xacro is one robot: the i-th of ``controllers`` and
+    ``srdfs`` (when given) is the i-th URDF's or Xacro's; a spec brings its own."""
+    from descgen.audit import together
+    from descgen.codes.graph import GRAPH010
+
+    described = [p for p in paths if kind_of(p) != "spec"]
+    for option, files in (("--controllers", controllers), ("--srdf", srdfs)):
+        if files and len(files) != len(described):
+            raise InputError(
+                [
+                    GRAPH010.finding(
+                        f"{option} is given {len(files)} time(s) for {len(described)} URDF or Xacro file(s)",
+                        f"with --together, give {option} once per URDF or Xacro, in their order (a spec brings its "
+                        "own), or not at all",
+                        "option",
+                        Where("<command line>"),
+                    )
+                ]
+            )
+    per_path: list[Options] = []
+    k = 0
+    for p in paths:
+        if kind_of(p) == "spec":
+            per_path.append(options)
+            continue
+        per_path.append(
+            dataclasses.replace(
+                options,
+                controllers=controllers[k] if controllers else None,
+                srdf=srdfs[k] if srdfs else None,
+            )
+        )
+        k += 1
+    found: list[Finding] = []
+    unusable = False
+    robots: list[together.Labelled] = []
+    for p, opts in zip(paths, per_path, strict=True):
+        fs, bad = _audit_one(p, opts)
+        found += fs
+        unusable = unusable or bad
+        if not bad:
+            # the models again: the audit above may have been answered from the findings cache
+            robots.append((str(p), load_description(p, opts)[0]))
+        if step is not None:
+            step(1)
+    return found + together.findings(robots), unusable
 
 
 def _audit_one(path: Path, options: Options) -> tuple[list[Finding], bool]:

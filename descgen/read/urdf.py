@@ -382,6 +382,7 @@ class _Reader:
         # Jazzy looks for a mimic joint's leader in the same block only)
         joints = []
         sensors = []
+        gpios = []
         hardware = []
         refused = [
             ((block.get("name") or "").strip(), message, self.where(e))
@@ -419,7 +420,24 @@ class _Reader:
                 )
             for se in block.findall("sensor"):
                 sensors.append(
-                    m.ControlSensor(se.get("name", ""), self.interfaces(se, "state_interface"), self.where(se))
+                    m.ControlSensor(
+                        se.get("name", ""),
+                        self.interfaces(se, "state_interface"),
+                        self.where(se),
+                        params=tuple((p.get("name", ""), (p.text or "").strip()) for p in se.findall("param")),
+                        block=block.get("name", ""),
+                    )
+                )
+            for ge in block.findall("gpio"):
+                gpios.append(
+                    m.ControlGpio(
+                        ge.get("name", ""),
+                        self.interfaces(ge, "command_interface"),
+                        self.interfaces(ge, "state_interface"),
+                        self.where(ge),
+                        block.get("name", ""),
+                        tuple((p.get("name", ""), (p.text or "").strip()) for p in ge.findall("param")),
+                    )
                 )
         sim = tuple(
             ((pe.get("filename") or "").strip(), self.where(pe))
@@ -439,6 +457,7 @@ class _Reader:
             sensors=tuple(sensors),
             blocks=tuple(hardware),
             sim_plugins=sim,
+            gpios=tuple(gpios),
             is_async=b.is_async,
         ), tuple(refused)
 

@@ -5,11 +5,20 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
+from descgen.audit.located import Param
 from descgen.audit.registry import at, rule
 from descgen.core.findings import Finding
+from descgen.core.launch_subst import unresolved
 from descgen.core.model import Joint, Link, Robot
+from descgen.physics.control_claims import JOINT_PARAMS, names
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+# controller parameters that name a frame or a ros2_control sensor of the robot
+_FRAME_PARAMS = ("base_frame_id", "odom_frame_id", "frame_id", "sensor_name")
+# frame parameters whose jazzy default (descgen/physics/controller_params.py) is a frame name
+_DEFAULT_FRAMES = {
+    "diff_drive_controller/DiffDriveController": (("odom_frame_id", "odom"), ("base_frame_id", "base_link")),
+}
 
 
 @rule("NAME001", "duplicate-link-name", "error")
@@ -71,3 +80,56 @@ def unusable_name(robot: Robot) -> Iterator[Finding]:
         if not _IDENT.match(elem.name):
             message = f"name '{elem.name}' is not a plain identifier"
             yield at("NAME003", elem, message, "use letters, digits and _, starting with a letter")
+
+
+@rule("NAME014", "name-without-prefix", "error")
+def name_without_prefix(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Where a robot declares a name prefix (a Xacro's `prefix` or `tf_prefix` argument, the
+    convention of ros2_control_demos and the UR description), finds the names that lack it:
+    frames robot_state_publisher publishes (every joint's child; the root is where the robot is
+    mounted and may be shared), joints, ros2_control joints, sensors and GPIOs, and the joints
+    and frame ids its controllers name.
+    ## Why is this bad?
+    ROS 2 has no tf_prefix: the prefix is the only thing that keeps two robots of one graph
+    apart. One name without it is published by both robots (two parents for one frame on /tf)
+    or commands the other robot's joint; `descgen audit A B --together` shows the collision.
+    """
+    p = robot.prefix
+    if p is None or not p.value:
+        return
+    declared = f"{p.declared} = '{p.value}', {p.where}"
+
+    def lacking(kind: str, name: str, elem: object, subject: str | None = None) -> Finding:
+        return at(
+            "NAME014",
+            elem,
+            f"{kind} '{name}' lacks the robot's prefix ({declared})",
+            f"name it '{p.value}{name}': write the prefix argument before the name",
+            subject=subject,
+        )
+
+    for j in robot.joints:
+        if not j.name.startswith(p.value):
+            yield lacking("joint", j.name, j)
+        if j.child and not j.child.startswith(p.value):
+            lk = robot.link(j.child)
+            yield lacking("frame", j.child, lk if lk is not None else j, f"link:{j.child}")
+    rc = robot.ros2_control
+    if rc is None:
+        return
+    for kind, elems in (("ros2_control joint", rc.joints), ("ros2_control sensor", rc.sensors), ("gpio", rc.gpios)):
+        for e in elems:
+            if not e.name.startswith(p.value):
+                yield lacking(kind, e.name, e, f"ros2_control:{e.name}")
+    for c in rc.controllers:
+        for key, default in _DEFAULT_FRAMES.get(c.type, ()):
+            if c.param(key) is None:  # unset: the controller publishes its default, unprefixed
+                unset = f"controller '{c.name}' {key} (unset, so its default)"
+                yield lacking(unset, default, c, f"controller:{c.name}")
+        for key in (*JOINT_PARAMS, *_FRAME_PARAMS):
+            value = c.param(key)
+            for i, name in enumerate(names(value)):
+                if not name.startswith(p.value) and not unresolved(name):
+                    index = i if isinstance(value, tuple | list) else None
+                    yield lacking(f"controller '{c.name}' {key}", name, Param(c, key, index))
