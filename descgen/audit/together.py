@@ -14,7 +14,7 @@ from collections.abc import Iterator, Sequence
 from descgen.codes.graph import GRAPH001, GRAPH002, GRAPH003, GRAPH004
 from descgen.core.findings import Finding
 from descgen.core.model import Joint, Robot
-from descgen.physics.control_claims import JOINT_PARAMS, claims_of, command_pairs, names
+from descgen.physics.control_claims import command_pairs, joint_params, names
 
 Labelled = tuple[str, Robot]  # the path as the user gave it, and its model
 
@@ -94,9 +94,8 @@ def _claims(first: Labelled, second: Labelled) -> Iterator[Finding]:
                 cj.where,
             )
     for c in rc.controllers:
-        keys = JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
         seen: set[str] = set()
-        for key in keys:
+        for key in joint_params(c):
             value = c.param(key)
             for i, name in enumerate(names(value)):
                 if foreign(name) and name not in seen:

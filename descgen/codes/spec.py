@@ -575,6 +575,25 @@ SPEC130 = declare(
       fails. Remove it, or copy the code and subject from the finding (as ruff reports an unused noqa).""",
 )
 
+SPEC140 = declare(
+    "SPEC140",
+    "prefix-invalid",
+    "error",
+    "The spec's prefix is not letters, digits and _ starting with a letter.",
+    """The prefix is written before every frame, joint and ros2_control name, and into the Xacro as the
+      `prefix` argument's default; a name it makes must stay a plain identifier (e.g. left_).""",
+)
+
+SPEC141 = declare(
+    "SPEC141",
+    "namespace-invalid",
+    "error",
+    "The spec's namespace is not a ROS namespace: names of letters, digits and _ (not starting with a digit), "
+    "separated by /.",
+    """The launch files start every node of the robot in this namespace (robot_state_publisher, the controller
+      manager, the spawners); rcl refuses a namespace with other characters, a doubled or a trailing /.""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",

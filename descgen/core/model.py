@@ -640,6 +640,8 @@ class Robot:
     control_refusals: tuple[tuple[str, str, Where], ...] = ()
     # the declared name prefix (NAME014); None: the robot declares none
     prefix: NamePrefix | None = None
+    # the spec's ROS namespace for the launch files' nodes; None: the root namespace
+    namespace: str | None = None
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

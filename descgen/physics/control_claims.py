@@ -48,6 +48,12 @@ IMU_INTERFACES = (
 FT_INTERFACES = ("force.x", "force.y", "force.z", "torque.x", "torque.y", "torque.z")
 # parameters that name URDF joints, per the controllers above
 JOINT_PARAMS = ("joints", "command_joints", "joint", "left_wheel_names", "right_wheel_names")
+# parameters that name a frame or a ros2_control sensor of the robot
+FRAME_PARAMS = ("base_frame_id", "odom_frame_id", "frame_id", "sensor_name")
+# frame parameters whose jazzy default (descgen/physics/controller_params.py) is a frame name
+DEFAULT_FRAMES = {
+    "diff_drive_controller/DiffDriveController": (("odom_frame_id", "odom"), ("base_frame_id", "base_link")),
+}
 
 
 @record
@@ -204,6 +210,12 @@ TABLE: dict[str, Callable[[Controller], Claims]] = {
 def claims_of(c: Controller) -> Claims:
     fn = TABLE.get(c.type)
     return fn(c) if fn is not None else Claims(False)
+
+
+def joint_params(c: Controller) -> tuple[str, ...]:
+    """The parameters of ``c`` that name URDF joints: an unknown type's ``joint`` may mean
+    something else, its joint lists are still joints."""
+    return JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
 
 
 def split(full: str) -> tuple[str, str]:

@@ -13,6 +13,7 @@ from descgen.core.findings import Finding, Where
 from descgen.core.model import Controller, Robot
 from descgen.core.xmlcompare import parse
 from descgen.read import params as rcl
+from descgen.render.context import node_key
 
 _JOINT_LISTS = ("joints", "left_wheel_names", "right_wheel_names")
 
@@ -57,7 +58,7 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
     # unquoted y is true, 1e3 a double), so what PyYAML reads back must also be what ROS reads
     out += _as_ros_loads(files[path], str(where / path), doc, path)
     command, state, urdf_joints = exported_interfaces(files[f"urdf/{robot.name}.urdf"])
-    cm = (doc or {}).get("controller_manager", {}).get("ros__parameters", {})
+    cm = (doc or {}).get(node_key(robot, "controller_manager"), {}).get("ros__parameters", {})
     if not isinstance(cm.get("update_rate"), int):
         out.append(
             GEN003.finding(
@@ -70,7 +71,7 @@ def controllers_yaml(files: dict[str, str], robot: Robot, where: Path) -> list[F
     for name, entry in cm.items():
         if not isinstance(entry, dict) or "type" not in entry:
             continue
-        params = (doc.get(name) or {}).get("ros__parameters", {})
+        params = (doc.get(node_key(robot, name)) or {}).get("ros__parameters", {})
         c = Controller(name, str(entry["type"]), tuple((k, _tuple(v)) for k, v in params.items()))
         known = claims_of(c)
         for key in JOINT_PARAMS if known.known else _JOINT_LISTS:
@@ -126,7 +127,8 @@ def _as_ros_loads(text: str, file: str, doc: Any, path: str) -> list[Finding]:
         if p.kind == "error"
     ]
     for node in loaded.nodes:
-        entry = (doc or {}).get(node.name.lstrip("/"), {}) if isinstance(doc, dict) else {}
+        # rcl names a node absolutely (/left/arm_controller); the file's key may be relative
+        entry = (doc.get(node.name) or doc.get(node.name.lstrip("/"), {})) if isinstance(doc, dict) else {}
         yaml_params = _flat(entry.get("ros__parameters", {})) if isinstance(entry, dict) else {}
         for q in node.params:
             theirs = yaml_params.get(q.name)

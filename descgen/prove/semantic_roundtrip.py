@@ -16,6 +16,7 @@ from descgen.core.model import Interface, Robot
 from descgen.core.xmlcompare import line_of, parse
 from descgen.physics import derive
 from descgen.prove.controllers import safe_load
+from descgen.render.context import node_key
 
 
 def _f(text: str | None) -> float | None:
@@ -247,11 +248,11 @@ def controllers_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> l
         return []
     d = _Diffs(str(where / rel), GEN033, "controllers YAML")
     doc = safe_load(files[rel]) or {}
-    cm = doc.get("controller_manager", {}).get("ros__parameters", {})
+    cm = doc.get(node_key(robot, "controller_manager"), {}).get("ros__parameters", {})
     d.eq("controller_manager/update_rate", rc.update_rate, cm.get("update_rate"))
     for c in rc.controllers:
         d.eq(f"controller:{c.name}/type", c.type, (cm.get(c.name) or {}).get("type"))
-        written = (doc.get(c.name) or {}).get("ros__parameters", {})
+        written = (doc.get(node_key(robot, c.name)) or {}).get("ros__parameters", {})
         expected = {k: _plain(v) for k, v in c.params}
         if c.type.startswith("diff_drive_controller/"):
             geo = derive.diff_drive_geometry(robot, c)

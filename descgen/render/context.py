@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import yaml
@@ -16,7 +17,7 @@ from descgen.physics.poses import worst_mm
 from descgen.read.params import typed
 from descgen.render.control_blocks import control_blocks, control_depends
 from descgen.render.formatting import num, vec, xacro_text
-from descgen.render.views import Values, calibration_keys, items
+from descgen.render.views import Values, calibration_keys, items, prefix_arg
 from descgen.spec.passthrough import for_xacro
 
 # exec_depends of what the launch files start and what controller_manager loads
@@ -61,12 +62,19 @@ def _represent_str(dumper: yaml.SafeDumper, data: str) -> yaml.Node:
 _Dumper.add_representer(str, _represent_str)
 
 
+def node_key(robot: Robot, node: str) -> str:
+    """A node's key in the controllers YAML. In a namespace the nodes are /<ns>/controller_manager
+    and /<ns>/<controller>: a bare key names /controller_manager (rclcpp adds the leading /)
+    and would reach none of them."""
+    return f"/{robot.namespace.strip('/')}/{node}" if robot.namespace else node
+
+
 def controllers_doc(robot: Robot) -> dict[str, Any]:
     rc = robot.ros2_control
     if rc is None:
         return {}
     cm: dict[str, Any] = {"update_rate": round(rc.update_rate or 100)}
-    doc: dict[str, Any] = {"controller_manager": {"ros__parameters": cm}}
+    doc: dict[str, Any] = {node_key(robot, "controller_manager"): {"ros__parameters": cm}}
     for c in rc.controllers:
         cm[c.name] = {"type": c.type}
     for c in rc.controllers:
@@ -74,7 +82,7 @@ def controllers_doc(robot: Robot) -> dict[str, Any]:
         if c.type.startswith("diff_drive_controller/"):
             params.update(derive.wheel_params(robot, c))
         if params:
-            doc[c.name] = {"ros__parameters": params}
+            doc[node_key(robot, c.name)] = {"ros__parameters": params}
     return doc
 
 
@@ -204,6 +212,10 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
     text = xacro_text if xacro else str
     if rc is None:
         return {"control_sensors": [], "control_gpios": [], "hw_variants": [], "hw_variant_names": [], "gz_sim": None}
+    prefix = robot.prefix.value if robot.prefix is not None and xacro else ""
+
+    def shown(name: str) -> str:
+        return prefix_arg(name, prefix)
 
     def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
         return [(k, text(v)) for k, v in items]
@@ -215,8 +227,8 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
     else:
         gz_file = controllers_file if rc.plugin == GZ_PLUGIN else None
     return {
-        "control_sensors": [{"name": c.name, "state": c.state, "params": params(c.params)} for c in rc.sensors],
-        "control_gpios": rc.gpios,
+        "control_sensors": [{"name": shown(c.name), "state": c.state, "params": params(c.params)} for c in rc.sensors],
+        "control_gpios": [replace(g, name=shown(g.name)) for g in rc.gpios],
         "hw_variants": [{"name": v.name, "plugin": v.plugin, "params": params(v.params)} for v in rc.variants]
         if xacro
         else [],
@@ -230,7 +242,9 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
 def build(robot: Robot, xacro: bool) -> dict[str, Any]:
     """Context for one template family: ``xacro`` chooses property references and
     xacro-escaped free text over plain numbers and text."""
-    values = Values(xacro=xacro, calibrated=calibration_keys(robot))
+    prefix = robot.prefix.value if robot.prefix is not None else ""
+    values = Values(xacro=xacro, calibrated=calibration_keys(robot), prefix=prefix)
+    shown = values.name
     element_items, macros = items(robot, values)
     text = xacro_text if xacro else str
     materials = [
@@ -272,7 +286,10 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "hw_params": [(k, text(v)) for k, v in rc.params] if rc else [],
         "control_blocks": control_blocks(robot, xacro),
         "control_joints": derive.interfaces_with_limits(robot),
-        "control_mimic": {cj.name: cj.mimic for cj in rc.joints if cj.mimic is not None} if rc else {},
+        "control_mimic": {shown(cj.name): cj.mimic for cj in rc.joints if cj.mimic is not None} if rc else {},
+        # the Xacro's prefix argument (its default) and the launch files' namespace
+        "name_prefix": prefix,
+        "namespace": robot.namespace.strip("/") if robot.namespace else "",
         **control_extras(robot, xacro),
         "controllers": controllers,
         "plugin": rc.plugin if rc else "",

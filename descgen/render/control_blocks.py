@@ -8,6 +8,7 @@ from typing import Any
 from descgen.core.model import HardwareBlock, Robot, Ros2Control
 from descgen.physics import derive
 from descgen.render.formatting import xacro_text
+from descgen.render.views import prefix_arg
 
 
 def in_block(rc: Ros2Control, block: HardwareBlock, owner: str) -> bool:
@@ -22,6 +23,10 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
     if rc is None:
         return []
     text = xacro_text if xacro else str
+    prefix = robot.prefix.value if robot.prefix is not None and xacro else ""
+
+    def shown(name: str) -> str:  # the Xacro writes the prefix as its argument (render/views.py)
+        return prefix_arg(name, prefix)
 
     def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
         return [(k, text(v)) for k, v in items]
@@ -32,7 +37,7 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
     for b in rc.hardware_blocks():
         out.append(
             {
-                "name": b.name,
+                "name": shown(b.name),
                 "type": b.type,
                 "is_async": b.is_async,
                 "plugin": b.plugin,
@@ -41,18 +46,20 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
                 "variants": [{"name": v.name, "plugin": v.plugin, "params": params(v.params)} for v in b.variants]
                 if xacro
                 else [],
-                "joints": [jt for jt in joints if in_block(rc, b, block_of.get(jt[0], ""))],
+                "joints": [(shown(n), c, st) for n, c, st in joints if in_block(rc, b, block_of.get(n, ""))],
+                # shown name -> the joint's name (the initial_positions file's key)
+                "raw": {shown(n): n for n, _, _ in joints},
                 "sensors": [
-                    {"name": c.name, "state": c.state, "params": params(c.params)}
+                    {"name": shown(c.name), "state": c.state, "params": params(c.params)}
                     for c in rc.sensors
                     if in_block(rc, b, c.block)
                 ],
                 "gpios": [
-                    {"name": g.name, "command": g.command, "state": g.state, "params": params(g.params)}
+                    {"name": shown(g.name), "command": g.command, "state": g.state, "params": params(g.params)}
                     for g in rc.gpios
                     if in_block(rc, b, g.block)
                 ],
-                "joint_params": {cj.name: params(cj.params) for cj in rc.joints if cj.params},
+                "joint_params": {shown(cj.name): params(cj.params) for cj in rc.joints if cj.params},
             }
         )
     return out

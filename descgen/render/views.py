@@ -112,6 +112,12 @@ class Values:
     # joint name -> its key in config/calibration/*.yaml: a calibrated joint's origin is read
     # from the calibration file in the Xacro (calibration_keys)
     calibrated: dict[str, str] = field(default_factory=dict)
+    # the robot's declared prefix (spec ``prefix:``): the Xacro writes it as its ``prefix`` argument
+    prefix: str = ""
+
+    def name(self, n: str) -> str:
+        """A frame or joint name as written: in the Xacro, the prefix as ``$(arg prefix)``."""
+        return prefix_arg(n, self.prefix) if self.xacro else n
 
     def origin(self, j: Joint, stem: str) -> tuple[str, str]:
         """The origin attributes of ``j``: from the calibration file when it is calibrated (the
@@ -228,7 +234,7 @@ def link_view(link: Link, v: Values, name: str | None = None, key: str | None = 
     vis_keys, col_keys = _shape_keys(stem, link)
     src = link.source
     return LinkView(
-        name or link.name,
+        name or v.name(link.name),
         v.text(_comment(link.description, link.source)),
         tuple(_shape(s, k, v, src) for s, k in zip(link.visuals, vis_keys, strict=True)),
         tuple(_shape(s, k, v, src) for s, k in zip(link.collisions, col_keys, strict=True)),
@@ -259,7 +265,11 @@ def joint_view(
         dynamics = (("damping", num(j.dynamics.damping)), ("friction", num(j.dynamics.friction)))
     mimic: tuple[tuple[str, str], ...] = ()
     if j.mimic is not None:
-        mimic = (("joint", j.mimic.joint), ("multiplier", num(j.mimic.multiplier)), ("offset", num(j.mimic.offset)))
+        mimic = (
+            ("joint", v.name(j.mimic.joint)),
+            ("multiplier", num(j.mimic.multiplier)),
+            ("offset", num(j.mimic.offset)),
+        )
     safety: tuple[tuple[str, str], ...] = ()
     if j.safety is not None:
         s = j.safety
@@ -272,10 +282,10 @@ def joint_view(
     axis = vec(j.axis) if j.axis is not None and j.type not in NO_AXIS else None
     comment = v.text(_comment(j.description, j.source))
     return JointView(
-        name or j.name,
+        name or v.name(j.name),
         j.type,
-        j.parent or "",
-        child or j.child or "",
+        v.name(j.parent or ""),
+        child or v.name(j.child or ""),
         xyz,
         rpy,
         comment,
@@ -285,6 +295,15 @@ def joint_view(
         mimic,
         safety,
     )
+
+
+PREFIX_ARG = "$(arg prefix)"
+
+
+def prefix_arg(name: str, prefix: str) -> str:
+    """``name`` with its leading ``prefix`` written as the Xacro's prefix argument (a name
+    without it, such as a shared ``world``, is written as is)."""
+    return PREFIX_ARG + name[len(prefix) :] if prefix and name.startswith(prefix) else name
 
 
 def calibration_keys(robot: Robot) -> dict[str, str]:
@@ -329,7 +348,7 @@ def items(robot: Robot, v: Values) -> tuple[list[Item], list[PartMacro]]:
             xyz, rpy = v.origin(j, j.name)
             if xyz == _ZERO:  # a part's instance states its place, even at the parent's origin
                 xyz = v(f"{j.name}_xyz", vec(j.origin.xyz), j.source)
-            call = (("link", link.name), ("joint", j.name), ("xyz", xyz), ("rpy", rpy))
+            call = (("link", v.name(link.name)), ("joint", v.name(j.name)), ("xyz", xyz), ("rpy", rpy))
             out.append(
                 Item(
                     link_view(link, v, key=link.part),

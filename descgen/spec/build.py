@@ -24,6 +24,7 @@ from descgen.spec.convert import Converter
 from descgen.spec.joints import joint
 from descgen.spec.links import link
 from descgen.spec.moveit import moveit
+from descgen.spec.prefix import prefixed
 from descgen.spec.ros2_control import ros2_control
 from descgen.spec.rules import duplicate_materials, duplicate_semantics
 from descgen.spec.semantic import complete_states, known_pose, semantic
@@ -116,6 +117,10 @@ class Builder:
             robot = complete_states(with_semantic, spec.semantic)
         if spec.moveit is not None:
             robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
+        if spec.namespace:
+            robot = replace(robot, namespace=spec.namespace)
+        if spec.prefix:  # last: everything above names things as the spec does, unprefixed
+            robot = prefixed(robot, spec.prefix, conv.where(("prefix",)))
         return robot
 
     def _passthrough(self, spec: Any, tag: str) -> list[tuple[Any, Where]]:

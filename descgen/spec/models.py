@@ -1342,6 +1342,43 @@ RobotName = Annotated[
 ]
 
 
+PREFIX_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
+# rcl's rules for a namespace (rcl_validate_namespace): tokens of letters, digits and _ that do
+# not start with a digit, separated by single slashes; a leading / is allowed, a trailing one not
+NAMESPACE_PATTERN = r"^/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$"
+
+
+def _prefix(value: str) -> str:
+    if not re.fullmatch(PREFIX_PATTERN, value):
+        raise error(
+            "SPEC140",
+            f"{value!r} is not a valid prefix",
+            "use letters, digits and _ starting with a letter, e.g. left_: it is written before every name",
+        )
+    return value
+
+
+def _namespace(value: str) -> str:
+    if not re.fullmatch(NAMESPACE_PATTERN, value):
+        raise error(
+            "SPEC141",
+            f"{value!r} is not a ROS namespace",
+            "use names of letters, digits and _ separated by /, e.g. left_arm or /cell1/left_arm",
+        )
+    return value
+
+
+Prefix = Annotated[
+    str, StringConstraints(max_length=64), AfterValidator(_prefix), Field(json_schema_extra={"pattern": PREFIX_PATTERN})
+]
+Namespace = Annotated[
+    str,
+    StringConstraints(max_length=255),
+    AfterValidator(_namespace),
+    Field(json_schema_extra={"pattern": NAMESPACE_PATTERN}),
+]
+
+
 class CalibrationSourceSpec(Base):
     """Where a set of calibration values comes from: the provenance every entry cites by name."""
 
@@ -1500,6 +1537,13 @@ class RobotSpec(Base):
     waivers: list[WaiverSpec] = []
     """Findings the team accepts for now, by code and subject: still reported, as waived, and failing no command; a
     waiver that matches nothing is SPEC130."""
+    prefix: Prefix | None = None
+    """Written before every frame, joint, ros2_control joint, sensor and GPIO name and the names controllers are given
+    (joint lists, wheel names, frame ids), so robots share one ROS graph (ROS 2 has no tf_prefix); the Xacro takes it
+    as its `prefix` argument, default this value (docs/multi-robot.md, SPEC140)."""
+    namespace: Namespace | None = None
+    """The ROS namespace the launch files start the robot's nodes in (robot_state_publisher, the controller manager,
+    the spawners), e.g. `left_arm` (SPEC141)."""
 
 
 __all__ = ["Measured", "RobotSpec"]

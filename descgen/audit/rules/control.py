@@ -12,7 +12,7 @@ from descgen.audit.registry import at, rule
 from descgen.core.findings import Finding, Where
 from descgen.core.launch_subst import unresolved
 from descgen.core.model import WITH_LIMITS, Controller, HardwareBlock, Robot
-from descgen.physics.control_claims import JOINT_PARAMS, claims_of, command_pairs, state_pairs
+from descgen.physics.control_claims import JOINT_PARAMS, claims_of, command_pairs, joint_params, state_pairs
 from descgen.physics.hardware_info import active_mimic, mimic_attribute, valid_mimic_attribute
 
 _SENSOR_BROADCASTERS = ("imu_sensor_broadcaster/", "force_torque_sensor_broadcaster/")
@@ -409,9 +409,7 @@ def controller_names_unknown_joint(robot: Robot) -> Iterator[Finding]:
     if rc is None:
         return
     for c in rc.controllers:
-        # an unknown type's `joint` may mean something else; its joint lists are still joints
-        keys = JOINT_PARAMS if claims_of(c).known else ("joints", "left_wheel_names", "right_wheel_names")
-        for key in keys:
+        for key in joint_params(c):
             value = c.param(key)
             for i, name in enumerate(_list(value)):
                 # a controllers file's launch substitution left as written: CTRL052/053 stand for it

@@ -33,17 +33,19 @@ def is_mobile_base(robot: Robot) -> bool:
 @rule("NAME010", "no-base-link", "warning")
 def no_base_link(robot: Robot) -> Iterator[Finding]:
     """## What it does
-    Flags a wheeled robot (REP 105 is about mobile platforms) without a `base_link` frame.
+    Flags a wheeled robot (REP 105 is about mobile platforms) without a `base_link` frame
+    (behind its prefix, where it declares one: NAME014).
     ## Why is this bad?
     REP 105 names the frame rigidly attached to the base `base_link`; navigation,
     odometry and most tools look it up by that name.
     """
-    if robot.links and robot.link("base_link") is None and is_mobile_base(robot):
+    name = _prefixed(robot, "base_link")
+    if robot.links and robot.link(name) is None and is_mobile_base(robot):
         yield at(
             "NAME010",
             robot,
-            "no link named 'base_link' (REP 105)",
-            "name the base's rigid frame base_link",
+            f"no link named '{name}' (REP 105)",
+            f"name the base's rigid frame {name}",
             subject="robot",
         )
 
@@ -56,14 +58,20 @@ def mobile_base_without_footprint(robot: Robot) -> Iterator[Finding]:
     Common practice for wheeled robots is `base_footprint` on the floor under `base_link`;
     2D navigation stacks default to it. (A convention, not a REP rule.)
     """
-    if is_mobile_base(robot) and robot.link("base_footprint") is None:
+    name = _prefixed(robot, "base_footprint")
+    if is_mobile_base(robot) and robot.link(name) is None:
         yield at(
             "NAME011",
             robot,
-            "wheeled base without a 'base_footprint' frame",
-            "add base_footprint on the floor under base_link",
+            f"wheeled base without a '{name}' frame",
+            f"add {name} on the floor under {_prefixed(robot, 'base_link')}",
             subject="robot",
         )
+
+
+def _prefixed(robot: Robot, name: str) -> str:
+    """A REP 105 frame name as a robot with a declared prefix writes it (left_base_link)."""
+    return robot.prefix.value + name if robot.prefix is not None else name
 
 
 def _optical_links(robot: Robot) -> list[str]:

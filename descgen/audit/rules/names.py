@@ -10,15 +10,9 @@ from descgen.audit.registry import at, rule
 from descgen.core.findings import Finding
 from descgen.core.launch_subst import unresolved
 from descgen.core.model import Joint, Link, Robot
-from descgen.physics.control_claims import JOINT_PARAMS, names
+from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, joint_params, names
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-# controller parameters that name a frame or a ros2_control sensor of the robot
-_FRAME_PARAMS = ("base_frame_id", "odom_frame_id", "frame_id", "sensor_name")
-# frame parameters whose jazzy default (descgen/physics/controller_params.py) is a frame name
-_DEFAULT_FRAMES = {
-    "diff_drive_controller/DiffDriveController": (("odom_frame_id", "odom"), ("base_frame_id", "base_link")),
-}
 
 
 @rule("NAME001", "duplicate-link-name", "error")
@@ -123,11 +117,11 @@ def name_without_prefix(robot: Robot) -> Iterator[Finding]:
             if not e.name.startswith(p.value):
                 yield lacking(kind, e.name, e, f"ros2_control:{e.name}")
     for c in rc.controllers:
-        for key, default in _DEFAULT_FRAMES.get(c.type, ()):
+        for key, default in DEFAULT_FRAMES.get(c.type, ()):
             if c.param(key) is None:  # unset: the controller publishes its default, unprefixed
                 unset = f"controller '{c.name}' {key} (unset, so its default)"
                 yield lacking(unset, default, c, f"controller:{c.name}")
-        for key in (*JOINT_PARAMS, *_FRAME_PARAMS):
+        for key in (*joint_params(c), *FRAME_PARAMS):
             value = c.param(key)
             for i, name in enumerate(names(value)):
                 if not name.startswith(p.value) and not unresolved(name):

@@ -1,0 +1,164 @@
+"""The spec's ``prefix:`` written before every name the robot puts into a ROS graph.
+
+ROS 2 has no tf_prefix: robots that share a graph keep apart by prefixing every frame, joint,
+ros2_control joint, sensor and GPIO, and every name their controllers are given (joint lists,
+wheel names, frame ids), as the ros2_control demos' ``prefix`` and the UR description's
+``tf_prefix`` do. A spec names things once, unprefixed; this is the one place the prefix is
+applied, to the whole model, after everything else is built, so every file generate writes
+(URDF, Xacro, SRDF, controllers YAML, MoveIt config) and every check sees the same names. The
+Xacro writes the prefix as its ``prefix`` argument (descgen/render/views.py), and NAME014 checks
+names written by hand in pass-through and controller parameters.
+
+Left as written: the robot's name, planning group and state names, controller names (one
+controller manager per robot, or a namespace, keeps those apart), waivers (their subjects are
+what findings print: prefixed), and the global frames ``map``, ``earth`` and ``world``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+from descgen.core import model as m
+from descgen.core.findings import Where
+from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, joint_params, split
+
+# parameters holding full interface names ("<component>/<interface>"): the component is prefixed
+FULL_NAME_PARAMS = ("max_effort_interface", "max_velocity_interface")
+# frames of the world, not of one robot (REP 105): shared by every robot of a graph
+GLOBAL_FRAMES = frozenset({"map", "earth", "world"})
+
+
+def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
+    """``robot`` with ``prefix`` before each of its names (module docstring), declared at ``where``."""
+    if not prefix:
+        return robot
+
+    def p(name: str) -> str:
+        return name if name in GLOBAL_FRAMES else prefix + name
+
+    def po(name: str | None) -> str | None:
+        return None if name is None else p(name)
+
+    def names(values: tuple[str, ...]) -> tuple[str, ...]:
+        return tuple(p(v) for v in values)
+
+    links = tuple(replace(lk, name=p(lk.name)) for lk in robot.links)
+    joints = tuple(
+        replace(
+            j,
+            name=p(j.name),
+            parent=po(j.parent),
+            child=po(j.child),
+            mimic=replace(j.mimic, joint=p(j.mimic.joint)) if j.mimic is not None else None,
+        )
+        for j in robot.joints
+    )
+    sensors = tuple(
+        replace(
+            s,
+            name=p(s.name),
+            link=p(s.link),
+            joint=p(s.joint),
+            optical_frame=po(s.optical_frame),
+            optical_joint=po(s.optical_joint),
+        )
+        for s in robot.sensors
+    )
+    poses = tuple(
+        replace(
+            kp,
+            joints=tuple((p(n), v) for n, v in kp.joints),
+            frames=tuple(replace(f, frame=p(f.frame), relative_to=po(f.relative_to)) for f in kp.frames),
+        )
+        for kp in robot.known_poses
+    )
+    return replace(
+        robot,
+        links=links,
+        joints=joints,
+        sensors=sensors,
+        ros2_control=_control(robot.ros2_control, p) if robot.ros2_control is not None else None,
+        semantic=_semantic(robot.semantic, p) if robot.semantic is not None else None,
+        known_poses=poses,
+        external_frames=tuple(replace(e, parent=p(e.parent), child=p(e.child)) for e in robot.external_frames),
+        joint_state_sources=tuple(replace(js, joints=names(js.joints)) for js in robot.joint_state_sources),
+        calibration=tuple(replace(c, joint=p(c.joint), sensor=po(c.sensor)) for c in robot.calibration),
+        drift_check=replace(robot.drift_check, frame=p(robot.drift_check.frame), base=po(robot.drift_check.base))
+        if robot.drift_check is not None
+        else None,
+        prefix=m.NamePrefix(prefix, "the spec's prefix", where),
+    )
+
+
+def _control(rc: m.Ros2Control, p: Callable[[str], str]) -> m.Ros2Control:
+    def params(items: tuple[tuple[str, str], ...], keys: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
+        return tuple((k, p(v) if k in keys and v else v) for k, v in items)
+
+    return replace(
+        rc,
+        name=p(rc.name) if rc.name else rc.name,
+        joints=tuple(replace(cj, name=p(cj.name), block=p(cj.block) if cj.block else "") for cj in rc.joints),
+        sensors=tuple(
+            replace(
+                s,
+                name=p(s.name),
+                frame=p(s.frame) if s.frame else s.frame,
+                params=params(s.params, ("frame_id",)),
+                block=p(s.block) if s.block else "",
+            )
+            for s in rc.sensors
+        ),
+        gpios=tuple(replace(g, name=p(g.name), block=p(g.block) if g.block else "") for g in rc.gpios),
+        blocks=tuple(replace(b, name=p(b.name)) for b in rc.blocks),
+        controllers=tuple(_controller(c, p) for c in rc.controllers),
+    )
+
+
+def _controller(c: m.Controller, p: Callable[[str], str]) -> m.Controller:
+    def value(key: str, v: object) -> object:
+        if key in joints or key in FRAME_PARAMS:
+            if isinstance(v, list | tuple):
+                return type(v)(p(x) if isinstance(x, str) and x else x for x in v)
+            return p(v) if isinstance(v, str) and v else v
+        if (key in FULL_NAME_PARAMS or key.startswith("interface_names.")) and isinstance(v, str) and "/" in v:
+            component, iface = split(v)
+            return f"{p(component)}/{iface}"
+        return v
+
+    joints = joint_params(c)
+    params = tuple((k, value(k, v)) for k, v in c.params)
+    given = {k for k, _ in params}
+    # unset, the controller would publish its default frames, the same for every robot: set, prefixed
+    added = tuple((k, p(default)) for k, default in DEFAULT_FRAMES.get(c.type, ()) if k not in given)
+    return replace(c, params=params + added)
+
+
+def _semantic(sem: m.Semantic, p: Callable[[str], str]) -> m.Semantic:
+    def names(values: tuple[str, ...]) -> tuple[str, ...]:
+        return tuple(p(v) for v in values)
+
+    return replace(
+        sem,
+        groups=tuple(
+            replace(
+                g,
+                links=names(g.links),
+                joints=names(g.joints),
+                chains=tuple((p(a), p(b)) for a, b in g.chains),
+            )
+            for g in sem.groups
+        ),
+        states=tuple(
+            replace(
+                st,
+                values=tuple((p(n), v) for n, v in st.values),
+                multi=tuple((p(n), v) for n, v in st.multi),
+            )
+            for st in sem.states
+        ),
+        end_effectors=tuple(replace(e, parent_link=p(e.parent_link)) for e in sem.end_effectors),
+        virtual_joints=tuple(replace(v, name=p(v.name), child_link=p(v.child_link)) for v in sem.virtual_joints),
+        passive_joints=names(sem.passive_joints),
+        disabled_collisions=tuple(replace(d, link1=p(d.link1), link2=p(d.link2)) for d in sem.disabled_collisions),
+    )
