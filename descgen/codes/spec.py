@@ -594,6 +594,49 @@ SPEC141 = declare(
       manager, the spawners); rcl refuses a namespace with other characters, a doubled or a trailing /.""",
 )
 
+SPEC142 = declare(
+    "SPEC142",
+    "composed-spec-unusable",
+    "error",
+    "A compose: entry's spec cannot be used: an absolute path, one that leaves the project, a missing or refused "
+    "file, a spec that composes itself (directly or not), or composition nested too deep.",
+    """The mounted robot is read as descgen reads any spec; its own errors are listed beside this one, in its file.
+      A spec is named relative to the one that composes it and stays inside the project, so the composition works
+      on any machine and reads nothing else.""",
+)
+
+SPEC143 = declare(
+    "SPEC143",
+    "composed-parent-unknown",
+    "error",
+    "A compose: entry's parent is not a frame of the robot that composes it.",
+    """The mounted robot's root hangs from this frame on a fixed joint; a frame that does not exist would leave the
+      mounted robot a second tree. Name one of this robot's links (or a robot composed before it).""",
+)
+
+SPEC144 = declare(
+    "SPEC144",
+    "composition-conflict",
+    "error",
+    "Composing the robots would give two elements one name, or mix what one robot cannot hold: a name both have "
+    "after their prefixes, pass-through XML (its names cannot be prefixed), or hardware variants that differ.",
+    """Every mounted robot needs its own prefix, and names of the composing robot must not start with one. A
+      pass-through element names links and joints in text descgen does not rewrite; keep it in the composing spec,
+      written with the prefixed names. The Xacro's hardware:= argument selects one variant for every
+      <ros2_control> block, so the robots must offer the same variants.""",
+)
+
+SPEC145 = declare(
+    "SPEC145",
+    "composed-odometry-tf-off",
+    "info",
+    "A mounted robot's diff drive controller published its root frame (odom -> base); mounted on a fixed joint, "
+    "its odometry tf is turned off (enable_odom_tf: false).",
+    """A robot's root has one parent on /tf. Mounted, the fixed joint publishes the root; the diff drive's odom tf
+      would publish it too (FRAME001). Robots that drive in one graph are separate specs, each with its own prefix
+      and namespace, audited with descgen audit --together (docs/multi-robot.md).""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",

@@ -389,10 +389,23 @@ def _poses(robot: Any, package: Path) -> list[str]:
     return lines
 
 
-def _frames(package: Path, files: dict[str, str]) -> list[str]:
+def _frames(package: Path, files: dict[str, str], robot: Any) -> list[str]:
     md = files.get("evidence/frames.md", "")
     m = re.search(r"```mermaid\n.*?```\n", md, re.S)
     lines = ["## 4. Frame ownership", "", f"Every edge and its publisher: {_link(package, 'evidence/frames.md')}.", ""]
+    if robot.mounted:  # a spec's compose: the tree below holds every robot, each behind its prefix
+        cell = _md().mdcell
+        lines += [
+            "Composed of (spec `compose:`; the tree below is all of them):",
+            "",
+            "| robot | spec | prefix | mounted on | by the fixed joint |",
+            "|---|---|---|---|---|",
+            *(
+                f"| {cell(mt.robot)} | {cell(mt.spec)} | {cell(mt.prefix)} | {cell(mt.parent)} | {cell(mt.joint)} |"
+                for mt in robot.mounted
+            ),
+            "",
+        ]
     if m:
         lines += [m.group(0).rstrip("\n"), ""]
     lines += [_verdict(m is not None, "one owner per frame (FRAME rules pass in validation)"), ""]
@@ -416,25 +429,36 @@ def _timestamps(robot: Any) -> list[str]:
             _not_applicable("the robot has no camera to stamp messages with"),
             "",
         ]
+    odom = plan(robot).odom
+    # the odometry frame of a driving base; a robot without one (an arm, a composed cell whose
+    # bases are fixed) is audited against its root, and has no odometry gap to plant
+    target = odom[0] if odom is not None else (robot.root() or TARGET_FRAME)
+    faults = FAULTS if odom is not None else tuple(f for f in FAULTS if f != "odom-gap")
+    expected = {"disconnected", "future"} | ({"stale"} if odom is not None else set())
     with tempfile.TemporaryDirectory(prefix="descgen-report-") as tmp:
         bag = Path(tmp) / "scenario"
-        write(robot, bag, FAULTS, 10.0, "mcap")
-        rep = audit(bag, TARGET_FRAME, (), 0, None)
-        text = cli_format.tf_audit_text(rep, TARGET_FRAME)
+        write(robot, bag, faults, 10.0, "mcap")
+        rep = audit(bag, target, (), 0, None)
+        text = cli_format.tf_audit_text(rep, target)
     c = rep.counts
     failed = {k for k in ("disconnected", "stale", "future") if c[k]}
-    planted = ", ".join(f"{_md().mdspan(f)} in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items())
+    planted = ", ".join(f"{_md().mdspan(f)} in [{a:g} s, {b:g} s)" for f, (a, b) in WINDOWS.items() if f in faults)
+    flags = " ".join(f"--fault {f}" for f in faults)
     lines = [
         "## 5. Timestamp failures",
         "",
-        f"`descgen tf-scenario SPEC --out BAG --fault camera-future --fault odom-gap --fault unknown-frame` "
-        f"(10 s; planted: {planted}), then `descgen tf-audit BAG --target {TARGET_FRAME}` "
+        f"`descgen tf-scenario SPEC --out BAG {flags}` "
+        f"(10 s; planted: {planted}), then {_md().mdspan(f'descgen tf-audit BAG --target {target}')} "
         "(the recording is not committed; this is its audit):",
         "",
         *_block(text, "text"),
         _verdict(
-            failed == {"disconnected", "stale", "future"},
-            "each planted fault shows as its own failure class (disconnected, stale, future-dated)",
+            failed == expected,
+            "each planted fault shows as its own failure class ("
+            + ", ".join(
+                k if k != "future" else "future-dated" for k in ("disconnected", "stale", "future") if k in expected
+            )
+            + ")",
         ),
         "",
     ]
@@ -567,7 +591,10 @@ def _field_story(spec: Path, shown: str, robot: Any) -> list[str]:
         "|---|---|---|",
     ]
     for c in caught:
-        by = _md().mdtext(f"{c.by.code}: {report.printable(c.by.message)}") if c.by else "**MISSED**"
+        # a fault with no place in this spec (a composed robot's camera is in its own spec) is
+        # neither caught nor missed
+        absent = "**MISSED**" if c.planted else "n/a"
+        by = _md().mdtext(f"{c.by.code}: {report.printable(c.by.message)}") if c.by else absent
         lines.append(f"| {_md().mdcell(c.fault.story)} | {'yes' if c.planted else 'not plantable'} | {by} |")
     results = plant_all(robot)
     applicable = [r for r in results if r.applicable]
@@ -624,7 +651,7 @@ def build(
         *_model(files, robot, package, proofs),
         *validation,
         *_poses(robot, package),
-        *_frames(package, files),
+        *_frames(package, files, robot),
         *_timestamps(robot),
         *traces,
         *dvm,

@@ -583,6 +583,19 @@ class Waiver:
 
 
 @record
+class Mounted:
+    """A robot composed into this one (spec ``compose:``; descgen/spec/compose.py): whose spec,
+    behind which prefix, hung from which frame by which fixed joint."""
+
+    robot: str
+    spec: str  # the spec file as the composing spec names it
+    prefix: str
+    parent: str
+    joint: str
+    where: Where = NOWHERE
+
+
+@record
 class NamePrefix:
     """The prefix every name of one robot carries, so robots share a ROS graph (ROS 2 has no
     tf_prefix): where a description declares it (a Xacro's ``prefix`` or ``tf_prefix`` argument,
@@ -642,6 +655,8 @@ class Robot:
     prefix: NamePrefix | None = None
     # the spec's ROS namespace for the launch files' nodes; None: the root namespace
     namespace: str | None = None
+    # the robots a spec's compose: mounted into this one, in order
+    mounted: tuple[Mounted, ...] = ()
 
     # Lookups. Broken descriptions may repeat names; these return the first. The indexes
     # are built once per (immutable) robot, so rules stay linear on 1000-link chains.

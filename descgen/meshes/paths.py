@@ -248,6 +248,23 @@ def _folder(spec: Path, written: str, key: str) -> tuple[Path | None, str]:
     return target, ""
 
 
+def spec_file(spec: Path, written: str) -> tuple[Path | None, str]:
+    """A spec file named by another spec (``compose:``), resolved, or why it cannot be used: it
+    is relative to the naming spec and stays in the project, as templates do (it is read as data,
+    but a spec pointing anywhere would let one spec read any YAML on the machine)."""
+    try:
+        if Path(written).is_absolute():
+            return None, "is an absolute path; a spec names other files relative to itself, so it works on any machine"
+        target = (spec.resolve().parent / written).resolve()
+        if not target.is_relative_to(project_root(spec)):
+            return None, f"leaves the project folder {project_root(spec).name}/"
+        if not target.is_file():
+            return None, "is not a file"
+    except (OSError, ValueError):
+        return None, "is not a file"
+    return target, ""
+
+
 def package_name(robot: Robot) -> str:
     """The generated package's name: the spec's ``package.name``, else ``<robot>_description``.
     The one place every output (package.xml, CMake, launch, ``package://``, ``$(find)``, the

@@ -13,19 +13,22 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from descgen.codes.spec import SPEC003
+from descgen.codes.spec import SPEC003, SPEC142
 from descgen.core.findings import Finding, InputError, errors
 from descgen.core.model import Robot
 from descgen.core.record import record
 from descgen.core.units import Range
 from descgen.infra import collector
 from descgen.infra.yamlsource import Document, Path_, load, loads
-from descgen.meshes.paths import resolve_spec
+from descgen.meshes.paths import resolve_spec, spec_file
 from descgen.spec import calibration
 from descgen.spec.build import Builder
+from descgen.spec.compose import mounted
 from descgen.spec.errors import data_path, findings_from
+from descgen.spec.geometry import pose
 from descgen.spec.models import RobotSpec
 from descgen.spec.plausibility import ranges_from
+from descgen.spec.prefix import GLOBAL_FRAMES
 from descgen.spec.quantity import MEMO, Measured
 from descgen.spec.rules import derived_package_name, missing_sources
 
@@ -44,7 +47,11 @@ Rules = Callable[[Robot], list[Finding]]
 
 
 def read_spec(
-    path: str | Path, display: str | None = None, rules: Rules | None = None, package_paths: Sequence[Path] = ()
+    path: str | Path,
+    display: str | None = None,
+    rules: Rules | None = None,
+    package_paths: Sequence[Path] = (),
+    composing: tuple[Path, ...] = (),
 ) -> Loaded:
     """Read, validate and build one spec. Raises :class:`InputError` with every error.
 
@@ -55,7 +62,7 @@ def read_spec(
     p = Path(path)
     with collector.paused():
         doc = load(p, display or str(path))
-        return from_document(doc, rules, _Place(p, tuple(package_paths)))
+        return from_document(doc, rules, _Place(p, tuple(package_paths), composing))
 
 
 def read_spec_text(text: str, file: str = "<string>", rules: Rules | None = None) -> Loaded:
@@ -69,6 +76,7 @@ class _Place:
 
     spec: Path
     package_paths: tuple[Path, ...] = ()
+    composing: tuple[Path, ...] = ()  # the specs whose compose: led here, outermost first (cycles)
 
 
 def from_document(doc: Document, rules: Rules | None = None, place: _Place | None = None) -> Loaded:
@@ -126,10 +134,64 @@ def _build(
             robot, problems = replace(robot, drift_check=check), problems + refused
     if spec.require_sources:
         problems += missing_sources(doc, spec)
-    digest = hashlib.sha256(doc.text.encode("utf-8")).hexdigest()
+    text = doc.text
+    if spec.compose:
+        robot, more, hashes = _composed(robot, spec, doc, place)
+        problems += more
+        text += "".join(f"\ncompose {h}" for h in hashes)  # a mounted robot's change is this spec's
+    digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
     rho = ranges.get("density")  # UNIT010 judges masses against the spec's plausibility
     density = None if rho is None else (rho.low, rho.high)
     return replace(robot, spec_hash=digest, density_range=density), problems
+
+
+MAX_COMPOSE_DEPTH = 8  # specs composing specs: deeper is a mistake, not a robot
+
+
+def _composed(
+    robot: Robot, spec: RobotSpec, doc: Document, place: _Place | None
+) -> tuple[Robot, list[Finding], list[str]]:
+    """``robot`` with every ``compose:`` entry's robot mounted (descgen/spec/compose.py), the
+    errors on the way (each mounted spec's own, located in it), and their spec hashes."""
+    problems: list[Finding] = []
+    hashes: list[str] = []
+    for i, c in enumerate(spec.compose):
+        where = doc.where(("compose", i, "spec"))
+
+        def refused(why: str, hint: str) -> Finding:
+            return SPEC142.finding(f"compose: {c.spec!r} {why}", hint, f"compose:{c.prefix}", where)  # noqa: B023
+
+        if place is None:
+            problems.append(refused("cannot be read: a spec given as text has no folder", "give the spec as a file"))
+            continue
+        target, why = spec_file(place.spec, c.spec)
+        if target is None:
+            problems.append(refused(why, "name a spec file relative to this one, inside the project"))
+            continue
+        chain = (*place.composing, place.spec.resolve())
+        if target in chain:
+            problems.append(refused("composes this spec again (a cycle)", "mount each robot once, not in a loop"))
+            continue
+        if len(chain) > MAX_COMPOSE_DEPTH:
+            problems.append(refused(f"is nested deeper than {MAX_COMPOSE_DEPTH} specs", "flatten the composition"))
+            continue
+        shown = str(Path(doc.file).parent / c.spec)
+        try:
+            sub = read_spec(target, shown, None, place.package_paths, chain)
+        except InputError as exc:
+            blocking = [f for f in exc.findings if f.blocks]
+            problems += [*blocking, refused(f"is refused ({len(blocking)} error(s) above)", "fix that spec first")]
+            continue
+        # behind this spec's own prefix too, when it has one: the composing robot's names carry it
+        # already (spec/build.py applies it first), and the spec names its parent unprefixed
+        own = robot.prefix.value if robot.prefix is not None else ""
+        parent = c.parent if c.parent in GLOBAL_FRAMES else own + c.parent
+        robot, more = mounted(
+            robot, sub.robot, c.spec, own + c.prefix, parent, pose(c.origin), c.joint, where, c.source
+        )
+        problems += more
+        hashes.append(sub.robot.spec_hash or "")
+    return robot, problems, hashes
 
 
 # -- every problem in one run --------------------------------------------------------------

@@ -1379,6 +1379,25 @@ Namespace = Annotated[
 ]
 
 
+class ComposeSpec(Base):
+    """Another robot's spec mounted on a frame of this one: its every name behind `prefix`, its root on a fixed
+    joint from `parent` (docs/multi-robot.md)."""
+
+    spec: Annotated[OneLine, StringConstraints(min_length=1, max_length=1000)]
+    """The other robot's spec file, relative to this spec and inside the project (SPEC142)."""
+    prefix: Prefix
+    """Written before every name of the mounted robot, as its own `prefix:` would be (e.g. `left_`); each mounted
+    robot needs its own (SPEC144)."""
+    parent: Annotated[OneLine, StringConstraints(min_length=1, max_length=256)]
+    """The frame of this robot the mounted robot's root hangs from (SPEC143)."""
+    origin: Origin = Origin()
+    """Where the mounted robot's root sits in `parent`."""
+    joint: Name | None = None
+    """The fixed joint's name; default `<prefix><root>_mount_joint`."""
+    source: Source | None = None
+    """Where the mounting pose comes from (a drawing, a measurement)."""
+
+
 class CalibrationSourceSpec(Base):
     """Where a set of calibration values comes from: the provenance every entry cites by name."""
 
@@ -1544,6 +1563,9 @@ class RobotSpec(Base):
     namespace: Namespace | None = None
     """The ROS namespace the launch files start the robot's nodes in (robot_state_publisher, the controller manager,
     the spawners), e.g. `left_arm` (SPEC141)."""
+    compose: list[ComposeSpec] = []
+    """Other robots' specs mounted on frames of this one, each behind its own prefix: one URDF, one ros2_control
+    controller manager (their controllers' names prefixed too), one SRDF (docs/multi-robot.md, SPEC142-SPEC144)."""
 
 
 __all__ = ["Measured", "RobotSpec"]

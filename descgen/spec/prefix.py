@@ -43,7 +43,8 @@ def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
     def names(values: tuple[str, ...]) -> tuple[str, ...]:
         return tuple(p(v) for v in values)
 
-    links = tuple(replace(lk, name=p(lk.name)) for lk in robot.links)
+    # a repeated part's name is its Xacro macro's: robots composed into one need one macro each
+    links = tuple(replace(lk, name=p(lk.name), part=prefix + lk.part if lk.part else None) for lk in robot.links)
     joints = tuple(
         replace(
             j,
@@ -51,6 +52,7 @@ def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
             parent=po(j.parent),
             child=po(j.child),
             mimic=replace(j.mimic, joint=p(j.mimic.joint)) if j.mimic is not None else None,
+            part=prefix + j.part if j.part else None,
         )
         for j in robot.joints
     )

@@ -40,7 +40,7 @@ def no_base_link(robot: Robot) -> Iterator[Finding]:
     odometry and most tools look it up by that name.
     """
     name = _prefixed(robot, "base_link")
-    if robot.links and robot.link(name) is None and is_mobile_base(robot):
+    if robot.links and not _has(robot, "base_link") and is_mobile_base(robot):
         yield at(
             "NAME010",
             robot,
@@ -59,7 +59,7 @@ def mobile_base_without_footprint(robot: Robot) -> Iterator[Finding]:
     2D navigation stacks default to it. (A convention, not a REP rule.)
     """
     name = _prefixed(robot, "base_footprint")
-    if is_mobile_base(robot) and robot.link(name) is None:
+    if is_mobile_base(robot) and not _has(robot, "base_footprint"):
         yield at(
             "NAME011",
             robot,
@@ -67,6 +67,24 @@ def mobile_base_without_footprint(robot: Robot) -> Iterator[Finding]:
             f"add {name} on the floor under {_prefixed(robot, 'base_link')}",
             subject="robot",
         )
+
+
+def _has(robot: Robot, name: str) -> bool:
+    """Every base of the robot has the REP 105 frame ``name``, behind its prefix: each robot a spec
+    composed, else each diff drive's base frame (``left_base_footprint``: ``left_``), else the
+    robot's own declared prefix."""
+    prefixes = {mt.prefix for mt in robot.mounted} or _drive_prefixes(robot) or {_prefixed(robot, "")}
+    return all(robot.link(p + name) is not None for p in prefixes)
+
+
+def _drive_prefixes(robot: Robot) -> set[str]:
+    out = set()
+    for c in robot.ros2_control.controllers if robot.ros2_control else ():
+        base = c.param("base_frame_id") if c.type.startswith("diff_drive_controller/") else None
+        for suffix in ("base_footprint", "base_link"):
+            if isinstance(base, str) and base.endswith(suffix):
+                out.add(base[: -len(suffix)])
+    return out
 
 
 def _prefixed(robot: Robot, name: str) -> str:

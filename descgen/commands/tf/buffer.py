@@ -185,7 +185,7 @@ def _pose(cache: _Cache, time: int) -> Pose:
             bx, by, bz, bw, dot = -bx, -by, -bz, -bw, -dot
         theta = math.acos(min(1.0, dot))
         span = (s[j], bx, by, bz, bw, theta, 1.0 / math.sin(theta) if theta != 0 else 0.0)
-        if len(cache.spans) > 2 * len(s):  # spans of pruned samples: start again
+        if len(cache.spans) > len(s):  # never more spans than samples
             cache.spans.clear()
         cache.spans[s[i]] = span
     _, bx, by, bz, bw, theta, d = span
@@ -298,6 +298,7 @@ class BufferCore:
         if stamps[0] + self.cache_ns < stamps[-1]:  # prune what fell out of the window
             k = bisect_left(stamps, stamps[-1] - self.cache_ns)
             del stamps[:k], cache.parents[:k], cache.poses[:k]
+            cache.spans.clear()  # kept spans are a memo: bounded by what was looked up since
         return None
 
     # -- looking up ----------------------------------------------------------------------
