@@ -65,7 +65,8 @@ def test_the_xacro_takes_another_prefix(package: Path, monkeypatch: pytest.Monke
     assert _names(right) == ({f"right_{n}" for n in links}, {f"right_{n}" for n in joints})
     controlled = {e.get("name") for e in right.find("ros2_control").findall("joint")}
     assert controlled and all(n.startswith("right_") for n in controlled)
-    assert right.find("ros2_control").get("name").startswith("right_")
+    # a block name is the hardware component's, one controller manager's own: left as the UR description leaves it
+    assert right.find("ros2_control").get("name") == "WarehouseArmSystem"
 
 
 def test_controllers_srdf_and_launch_use_the_prefix_and_the_namespace(package: Path) -> None:
@@ -148,3 +149,54 @@ def test_a_prefix_or_namespace_that_is_no_name_is_refused(tmp_path: Path, line: 
     spec.write_text(spec.read_text().replace("\nname: warehouse_arm\n", f"\nname: warehouse_arm\n{line}\n", 1))
     r = cli("validate", spec)
     assert r.returncode == 2 and f"error[{code}]" in r.stderr, r.stderr[-2000:]
+
+
+CORPUS = ROOT / "tests" / "data" / "jazzy_corpus"
+UR_ARGS = {"ur_type": "ur5e", "name": "ur5e", "use_mock_hardware": "true"}
+
+
+def _joints(root: etree._Element) -> dict[str, tuple[str, str, str, str]]:
+    """Each joint's parent, child and origin, as written."""
+    out = {}
+    for j in root.findall("joint"):
+        o = j.find("origin")
+        out[j.get("name")] = (
+            j.find("parent").get("link"),
+            j.find("child").get("link"),
+            o.get("xyz") if o is not None else "",
+            o.get("rpy") if o is not None else "",
+        )
+    return out
+
+
+def test_import_reads_the_ur_tf_prefix_as_the_spec_prefix(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The UR description with tf_prefix:=left_ imports as ``prefix: left_`` with bare names; the
+    package generated from it, expanded with prefix:=right_, is the UR Xacro with tf_prefix:=right_."""
+    spec = tmp_path / "specs" / "ur.yaml"
+    args = [x for k, v in {**UR_ARGS, "tf_prefix": "left_"}.items() for x in ("--xacro-arg", f"{k}:={v}")]
+    r = cli(
+        "import", CORPUS / "ur_robot_driver" / "urdf" / "ur.urdf.xacro", *args, "--package-path", CORPUS,
+        "--controllers", CORPUS / "ur_robot_driver" / "config" / "ur_controllers.yaml",
+        "--launch-arg", "tf_prefix:=left_", "-o", spec,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert "info[IMP041]" in r.stderr
+    text = spec.read_text()
+    assert "\nprefix: left_\n" in text and text.count("left_") == 1  # written once, taken out of every name
+    r = cli("generate", spec, "--package-path", CORPUS)
+    assert r.returncode == 0, r.stderr[-3000:]
+    package = tmp_path / "generated" / "ur5e_description"
+    import xacro.substitution_args as sa
+
+    # $(find P) answered as ament_index answers it in an install space: the generated package, or the corpus's P/
+    found = {"ur5e_description": package}
+    monkeypatch.setattr(sa, "_eval_find", lambda pkg: str(found.get(pkg, CORPUS / pkg)))
+    ours = xacro.process_file(str(package / "urdf" / "ur5e.urdf.xacro"), mappings={"prefix": "right_"})
+    theirs = xacro.process_file(
+        str(CORPUS / "ur_robot_driver" / "urdf" / "ur.urdf.xacro"), mappings={**UR_ARGS, "tf_prefix": "right_"}
+    )
+    a, b = etree.fromstring(ours.toxml().encode()), etree.fromstring(theirs.toxml().encode())
+    assert _names(a) == _names(b)
+    assert _joints(a) == _joints(b)
+    ctl = lambda root: sorted(e.get("name") for e in root.find("ros2_control").iter("joint"))  # noqa: E731
+    assert ctl(a) == ctl(b) and all(n.startswith("right_") for n in ctl(a))

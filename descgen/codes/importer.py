@@ -333,3 +333,15 @@ IMP040 = declare(
       a spec's group state names its group (SPEC050). Add the group to the SRDF's state (the audit of the
       original reports it too) and import again, or write it under group_states: in the spec.""",
 )
+
+IMP041 = declare(
+    "IMP041",
+    "import-prefix-recognised",
+    "info",
+    "Every name of the Xacro carries its prefix (its prefix or tf_prefix argument): the spec says prefix: once "
+    "and names everything without it.",
+    """descgen applies the spec's prefix: to every frame, joint, ros2_control and controller name, and the
+      generated Xacro takes it as its prefix argument, as the original took its own (docs/multi-robot.md). A
+      description where some name lacks the prefix is imported name for name instead, and the audit's NAME014
+      lists what lacks it.""",
+)

@@ -211,7 +211,16 @@ def _control(host: m.Robot, p: m.Robot, prefix: str, where: Where) -> tuple[m.Ro
     a, b = host.ros2_control, p.ros2_control
     if b is None:
         return a, []
-    b = replace(b, controllers=tuple(replace(c, name=prefix + c.name) for c in b.controllers))
+    b = replace(
+        b,
+        controllers=tuple(replace(c, name=prefix + c.name) for c in b.controllers),
+        # hardware component names: one controller manager holds both robots' blocks
+        name=prefix + b.name,
+        blocks=tuple(replace(hb, name=prefix + hb.name) for hb in b.blocks),
+        joints=tuple(replace(j, block=prefix + j.block if j.block else "") for j in b.joints),
+        sensors=tuple(replace(s, block=prefix + s.block if s.block else "") for s in b.sensors),
+        gpios=tuple(replace(g, block=prefix + g.block if g.block else "") for g in b.gpios),
+    )
     if a is None:
         return b, []
     problems = []

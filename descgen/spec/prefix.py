@@ -9,9 +9,11 @@ applied, to the whole model, after everything else is built, so every file gener
 Xacro writes the prefix as its ``prefix`` argument (descgen/render/views.py), and NAME014 checks
 names written by hand in pass-through and controller parameters.
 
-Left as written: the robot's name, planning group and state names, controller names (one
-controller manager per robot, or a namespace, keeps those apart), waivers (their subjects are
-what findings print: prefixed), and the global frames ``map``, ``earth`` and ``world``.
+Left as written: the robot's name, ``<ros2_control>`` block names, planning group and state
+names, controller names (one controller manager per robot, or a namespace, keeps those apart;
+compose, which puts robots in one manager, prefixes blocks and controllers itself), waivers
+(their subjects are what findings print: prefixed), and the global frames ``map``, ``earth``
+and ``world``.
 """
 
 from __future__ import annotations
@@ -21,10 +23,11 @@ from dataclasses import replace
 
 from descgen.core import model as m
 from descgen.core.findings import Where
-from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, joint_params, split
+from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, split
 
-# parameters holding full interface names ("<component>/<interface>"): the component is prefixed
-FULL_NAME_PARAMS = ("max_effort_interface", "max_velocity_interface")
+# controller parameters that hold the prefix itself (the UR controllers' tf_prefix): the spec
+# writes them empty, and they take the robot's prefix
+PREFIX_PARAMS = ("tf_prefix", "prefix")
 # frames of the world, not of one robot (REP 105): shared by every robot of a graph
 GLOBAL_FRAMES = frozenset({"map", "earth", "world"})
 
@@ -80,7 +83,7 @@ def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
         links=links,
         joints=joints,
         sensors=sensors,
-        ros2_control=_control(robot.ros2_control, p) if robot.ros2_control is not None else None,
+        ros2_control=_control(robot.ros2_control, p, _own(robot)) if robot.ros2_control is not None else None,
         semantic=_semantic(robot.semantic, p) if robot.semantic is not None else None,
         known_poses=poses,
         external_frames=tuple(replace(e, parent=p(e.parent), child=p(e.child)) for e in robot.external_frames),
@@ -93,43 +96,70 @@ def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
     )
 
 
-def _control(rc: m.Ros2Control, p: Callable[[str], str]) -> m.Ros2Control:
+def _own(robot: m.Robot) -> frozenset[str]:
+    """The names the prefix goes before, as the spec writes them (links, joints, ros2_control
+    joints, sensors and GPIOs): a controller parameter that is one of them names it."""
+    rc = robot.ros2_control
+    control: list[str] = []
+    if rc is not None:
+        control = [*(e.name for e in rc.joints), *(e.name for e in rc.sensors), *(e.name for e in rc.gpios)]
+    return frozenset([*(lk.name for lk in robot.links), *(j.name for j in robot.joints), *control]) - GLOBAL_FRAMES
+
+
+def _control(rc: m.Ros2Control, p: Callable[[str], str], own: frozenset[str]) -> m.Ros2Control:
     def params(items: tuple[tuple[str, str], ...], keys: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
         return tuple((k, p(v) if k in keys and v else v) for k, v in items)
 
+    # block names are hardware component names, one controller manager's own (the UR description
+    # does not prefix its block): left as written; compose, which puts blocks in one manager, does
     return replace(
         rc,
-        name=p(rc.name) if rc.name else rc.name,
-        joints=tuple(replace(cj, name=p(cj.name), block=p(cj.block) if cj.block else "") for cj in rc.joints),
+        joints=tuple(replace(cj, name=p(cj.name)) for cj in rc.joints),
         sensors=tuple(
-            replace(
-                s,
-                name=p(s.name),
-                frame=p(s.frame) if s.frame else s.frame,
-                params=params(s.params, ("frame_id",)),
-                block=p(s.block) if s.block else "",
-            )
+            replace(s, name=p(s.name), frame=p(s.frame) if s.frame else s.frame, params=params(s.params, ("frame_id",)))
             for s in rc.sensors
         ),
-        gpios=tuple(replace(g, name=p(g.name), block=p(g.block) if g.block else "") for g in rc.gpios),
-        blocks=tuple(replace(b, name=p(b.name)) for b in rc.blocks),
-        controllers=tuple(_controller(c, p) for c in rc.controllers),
+        gpios=tuple(replace(g, name=p(g.name)) for g in rc.gpios),
+        controllers=tuple(_controller(c, p, own) for c in rc.controllers),
     )
 
 
-def _controller(c: m.Controller, p: Callable[[str], str]) -> m.Controller:
-    def value(key: str, v: object) -> object:
-        if key in joints or key in FRAME_PARAMS:
-            if isinstance(v, list | tuple):
-                return type(v)(p(x) if isinstance(x, str) and x else x for x in v)
-            return p(v) if isinstance(v, str) and v else v
-        if (key in FULL_NAME_PARAMS or key.startswith("interface_names.")) and isinstance(v, str) and "/" in v:
-            component, iface = split(v)
-            return f"{p(component)}/{iface}"
-        return v
+def _controller(c: m.Controller, p: Callable[[str], str], own: frozenset[str]) -> m.Controller:
+    """A controller's parameters with the robot's names prefixed wherever they stand: a value or
+    a list item that is one of ``own`` (a joint, a link, a ros2_control sensor), the component of
+    a full interface name (``joint/position``), a key segment (JTC's ``constraints.<joint>.goal``,
+    ``gains.<joint>.p``); and the frame ids (FRAME_PARAMS), which may name frames the robot
+    does not have (``odom``)."""
 
-    joints = joint_params(c)
-    params = tuple((k, value(k, v)) for k, v in c.params)
+    def name(v: object) -> object:
+        if not isinstance(v, str) or not v:
+            return v
+        if v in own:
+            return p(v)
+        component, iface = split(v)
+        return f"{p(component)}/{iface}" if component in own else v
+
+    def value(v: object) -> object:
+        if isinstance(v, tuple) and v and all(isinstance(x, tuple) and len(x) == 2 for x in v):
+            return tuple((p(k) if k in own else k, value(x)) for k, x in v)  # a parameter namespace
+        if isinstance(v, list | tuple):
+            return type(v)(name(x) for x in v)
+        return name(v)
+
+    def key(k: str) -> str:
+        return ".".join(p(seg) if seg in own else seg for seg in k.split("."))
+
+    def frames(v: object) -> object:
+        if isinstance(v, list | tuple):
+            return type(v)(p(x) if isinstance(x, str) and x else x for x in v)
+        return p(v) if isinstance(v, str) and v else v
+
+    def prefixed_value(k: str, v: object) -> object:
+        if k in PREFIX_PARAMS and v == "":  # the robot's prefix, written empty in the spec
+            return p("")
+        return frames(v) if k in FRAME_PARAMS else value(v)
+
+    params = tuple((key(k), prefixed_value(k, v)) for k, v in c.params)
     given = {k for k, _ in params}
     # unset, the controller would publish its default frames, the same for every robot: set, prefixed
     added = tuple((k, p(default)) for k, default in DEFAULT_FRAMES.get(c.type, ()) if k not in given)

@@ -31,6 +31,7 @@ from descgen.codes.importer import (
     IMP038,
     IMP039,
     IMP040,
+    IMP041,
 )
 from descgen.commands.importer import control, variants
 from descgen.commands.importer.packages import package_meshes, package_name, package_paths, symbolic, with_package_name
@@ -337,6 +338,8 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     report += _not_imported(root, opts.description, shown, located, ctl.data is not None)
     structure = recognise(robot, writer) if structured else Structure()
     data_ = spec_data(robot, writer, kept, shown, structure, ctl.data)
+    data_, more = _prefixed(data_, path, opts.description, robot, root)
+    report += more
     folders, more = package_paths(robot, path, Path(opts.spec_name), opts.description.package_paths)
     report += more
     if folders:
@@ -364,6 +367,30 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
 # The largest description import takes (IMP035): what descgen answers for. Its spec must also fit
 # what validate reads (yamlsource.MAX_BYTES, MAX_NODES), else every command would refuse it.
 MAX_LINKS = 10_000
+
+
+def _prefixed(
+    data: dict[str, Any], path: Path, options: Options, robot: m.Robot, root: etree._Element
+) -> tuple[dict[str, Any], list[Finding]]:
+    """The spec data with the description's prefix as ``prefix:`` (commands/importer/prefix.py)."""
+    if kind_of(path) != "xacro":
+        return data, []
+    from descgen.commands.importer import prefix
+    from descgen.read.xacro_prefix import declared
+
+    name = declared(path, str(path), options.xacro_args)
+    if name is None:
+        return data, []
+    names = prefix.names_behind(name.value, robot, root)
+    if names is None:
+        return data, []  # some name lacks it: imported as it is (the audit's NAME014 names each)
+    note = IMP041.finding(
+        f"every name carries {name.declared} '{name.value}': written once as prefix:, and taken out of the names",
+        "generate writes it back ($(arg prefix) in the Xacro, default this value)",
+        "prefix",
+        name.where,
+    )
+    return prefix.with_prefix(prefix.without(data, name.value, names), name.value), [note]
 
 
 def _refuse_too_large(robot: m.Robot, shown: str, text: str | None = None) -> None:
