@@ -637,6 +637,24 @@ SPEC145 = declare(
       and namespace, audited with descgen audit --together (docs/multi-robot.md).""",
 )
 
+SPEC146 = declare(
+    "SPEC146",
+    "rw-rate-not-whole",
+    "error",
+    "A <ros2_control> block's rw_rate is not a whole, non-negative number of Hz.",
+    """ros2_control reads rw_rate as an integer (std::stoi: 12.5 Hz would run at 12 Hz, without a word) and refuses a
+      negative one. Write a whole number of Hz, or leave it out to run at the controller manager's rate.""",
+)
+
+SPEC147 = declare(
+    "SPEC147",
+    "thread-priority-without-async",
+    "error",
+    "A <ros2_control> block sets thread_priority but is not is_async: true.",
+    """Jazzy's parser reads thread_priority only for an async component; on any other it is ignored, so the value
+      written would mean nothing. Set is_async: true, or leave thread_priority out.""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",

@@ -297,6 +297,9 @@ class HardwareBlock:
     type: str = "system"  # system | actuator | sensor
     variants: tuple[HardwareVariant, ...] = ()  # as Ros2Control.variants, for this block
     is_async: bool | None = None  # the is_async attribute; None: not written (ros2_control: false)
+    rw_rate: int | None = None  # Hz; None: not written (ros2_control: the controller manager's rate)
+    thread_priority: int | None = None  # an async block's thread priority; None: not written (50)
+    group: str | None = None  # <hardware><group>: components of one group are read and written together
 
 
 @record
@@ -351,11 +354,25 @@ class Ros2Control:
     gpios: tuple[ControlGpio, ...] = ()
     update_rate_where: Where = NOWHERE  # its value in an audited controllers file; else unknown
     is_async: bool | None = None  # the first block's is_async attribute; None: not written
+    rw_rate: int | None = None  # the first block's, as HardwareBlock's
+    thread_priority: int | None = None
+    group: str | None = None
 
     def hardware_blocks(self) -> tuple[HardwareBlock, ...]:
         """Every ``<ros2_control>`` block in document order; a spec with one block has no
         ``blocks``, so it is the block described by the fields above."""
-        first = HardwareBlock(self.name, self.plugin, self.params, self.where, self.type, self.variants, self.is_async)
+        first = HardwareBlock(
+            self.name,
+            self.plugin,
+            self.params,
+            self.where,
+            self.type,
+            self.variants,
+            self.is_async,
+            self.rw_rate,
+            self.thread_priority,
+            self.group,
+        )
         return self.blocks or (first,)
 
 

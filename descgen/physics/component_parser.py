@@ -97,6 +97,22 @@ def _rw_rate(e: etree._Element) -> Refusal | None:
     return None
 
 
+def rw_rate(text: str | None) -> int | None:
+    """The rw_rate the parser reads from ``text`` (std::stoi: the leading integer), or None
+    when there is none or the parser throws on it (rows 8-10)."""
+    n = _stoi(text) if text is not None else "invalid"
+    return n if isinstance(n, int) and n >= 0 else None
+
+
+def thread_priority(text: str | None) -> int | None:
+    """The thread_priority the parser reads from ``text`` (``[1-9][0-9]*`` after stripping,
+    within an int), or None when absent or refused (row 11, E2)."""
+    value = None if text is None else text.strip(_BLANKS)
+    if value is None or not _POSITIVE.fullmatch(value) or int(value) > INT_MAX:
+        return None
+    return int(value)
+
+
 def _params(e: etree._Element, context: str) -> Iterator[Refusal]:
     """Row 6: a ``<param>`` without a name (P:361-364)."""
     for p in e.findall("param"):

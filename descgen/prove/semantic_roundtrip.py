@@ -166,6 +166,10 @@ def ros2_control_roundtrip(files: dict[str, str], robot: Robot, where: Path) -> 
         d.eq(f"{at}/plugin", hb.plugin, (b.findtext("hardware/plugin") or "").strip(), line)
         shown_async = None if hb.is_async is None else ("true" if hb.is_async else "false")
         d.eq(f"{at}/is_async", shown_async, b.get("is_async"), line)
+        for attr in ("rw_rate", "thread_priority"):
+            value = getattr(hb, attr)
+            d.eq(f"{at}/{attr}", None if value is None else str(value), b.get(attr), line)
+        d.eq(f"{at}/group", hb.group, b.findtext("hardware/group"), line)
         d.eq(f"{at}/params", dict(hb.params), {p.get("name"): p.text or "" for p in b.findall("hardware/param")}, line)
         mine = [jt for jt in joints if in_block(rc, hb, block_of.get(jt[0], ""))]
         elements = {j.get("name"): j for j in b.findall("joint")}

@@ -404,6 +404,12 @@ class _Reader:
                     (block.get("type") or "system").strip(),
                     (),
                     _bool(block.get("is_async")),
+                    component_parser.rw_rate(block.get("rw_rate")),
+                    # read only for an async block (component_parser.cpp 705-707)
+                    component_parser.thread_priority(block.get("thread_priority"))
+                    if _bool(block.get("is_async"))
+                    else None,
+                    ((hw.findtext("group") or "").strip() or None) if hw is not None else None,
                 )
             )
             for je in block.findall("joint"):
@@ -459,6 +465,9 @@ class _Reader:
             sim_plugins=sim,
             gpios=tuple(gpios),
             is_async=b.is_async,
+            rw_rate=b.rw_rate,
+            thread_priority=b.thread_priority,
+            group=b.group,
         ), tuple(refused)
 
 

@@ -40,6 +40,9 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
                 "name": shown(b.name),
                 "type": b.type,
                 "is_async": b.is_async,
+                "rw_rate": b.rw_rate,
+                "thread_priority": b.thread_priority,
+                "group": b.group,
                 "plugin": b.plugin,
                 "params": params(b.params),
                 # the Xacro chooses the hardware with hardware:=; a URDF is the default variant

@@ -720,6 +720,9 @@ class HardwareSpec(Base):
     variants: dict[Literal["gazebo", "real"], HardwareVariantSpec] = {}
     """Other hardware under `gazebo` and `real`: the generated Xacro then takes `hardware:=mock|gazebo|real` (default
     mock)."""
+    group: Name | None = None
+    """`<hardware><group>`: hardware components of one group are read and written together (Jazzy's resource
+    manager); unset: not written."""
 
     @model_validator(mode="after")
     def _variants_known(self) -> Self:
@@ -887,6 +890,12 @@ class Ros2ControlBlockSpec(Base):
     is_async: bool | None = None
     """`<ros2_control is_async>`: true runs the component in its own thread. Unset: not written (Jazzy's default,
     false)."""
+    rw_rate: Frequency | None = None
+    """`<ros2_control rw_rate>`: how often the component is read and written, a whole number of Hz (e.g. `50 Hz`);
+    unset, or above the controller manager's rate, it runs at that rate (SPEC146, CTRL067)."""
+    thread_priority: Annotated[int, Field(ge=1)] | None = None
+    """`<ros2_control thread_priority>`: the priority of an async component's thread (Jazzy's default 50); read
+    only when `is_async` is true (SPEC147)."""
     hardware: HardwareSpec = HardwareSpec()
     """The block's hardware plugin and params, with the same `variants` as the first block (SPEC089)."""
     joints: list[ControlJointSpec] = []
@@ -914,6 +923,12 @@ class Ros2ControlSpec(Base):
     is_async: bool | None = None
     """`<ros2_control is_async>`: true runs the component in its own thread. Unset: not written (Jazzy's default,
     false)."""
+    rw_rate: Frequency | None = None
+    """`<ros2_control rw_rate>`: how often the component is read and written, a whole number of Hz (e.g. `50 Hz`);
+    unset, or above the controller manager's rate, it runs at that rate (SPEC146, CTRL067)."""
+    thread_priority: Annotated[int, Field(ge=1)] | None = None
+    """`<ros2_control thread_priority>`: the priority of an async component's thread (Jazzy's default 50); read
+    only when `is_async` is true (SPEC147)."""
     hardware: HardwareSpec = HardwareSpec()
     """The hardware plugin and params; default the mock `mock_components/GenericSystem`."""
     update_rate: Frequency

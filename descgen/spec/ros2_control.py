@@ -7,7 +7,18 @@ from __future__ import annotations
 import re
 from collections.abc import Collection, Sequence
 
-from descgen.codes.spec import CTRL080, SPEC083, SPEC084, SPEC085, SPEC086, SPEC087, SPEC088, SPEC089
+from descgen.codes.spec import (
+    CTRL080,
+    SPEC083,
+    SPEC084,
+    SPEC085,
+    SPEC086,
+    SPEC087,
+    SPEC088,
+    SPEC089,
+    SPEC146,
+    SPEC147,
+)
 from descgen.core import model as m
 from descgen.core import units
 from descgen.infra.yamlsource import Path_
@@ -43,7 +54,16 @@ def ros2_control(conv: Converter, rc: s.Ros2ControlSpec, links: Collection[str] 
         variants = _variants(conv, block.hardware, (*path, "hardware"))
         hardware.append(
             m.HardwareBlock(
-                block.name, block.hardware.plugin, hw, conv.where(path), block.type, variants, block.is_async
+                block.name,
+                block.hardware.plugin,
+                hw,
+                conv.where(path),
+                block.type,
+                variants,
+                block.is_async,
+                _rw_rate(conv, block, path),
+                _thread_priority(conv, block, path),
+                block.hardware.group,
             )
         )
         _unique_components(conv, block, path)
@@ -80,7 +100,40 @@ def ros2_control(conv: Converter, rc: s.Ros2ControlSpec, links: Collection[str] 
         variants=first.variants,
         gpios=tuple(gpios),
         is_async=first.is_async,
+        rw_rate=first.rw_rate,
+        thread_priority=first.thread_priority,
+        group=first.group,
     )
+
+
+def _rw_rate(conv: Converter, block: Block, path: Path_) -> int | None:
+    """The block's rw_rate in whole Hz (ros2_control reads an integer), or None."""
+    if block.rw_rate is None:
+        return None
+    hz = block.rw_rate.si
+    if hz < 0 or abs(hz - round(hz)) > 1e-9:
+        conv.error(
+            SPEC146,
+            f"rw_rate is {hz:g} Hz: ros2_control reads a whole, non-negative number of Hz",
+            f"write {max(0, round(hz))} Hz, or leave rw_rate out (the controller manager's rate)",
+            f"ros2_control:{block.name}",
+            conv.where((*path, "rw_rate")),
+        )
+        return None
+    return round(float(hz))
+
+
+def _thread_priority(conv: Converter, block: Block, path: Path_) -> int | None:
+    if block.thread_priority is not None and block.is_async is not True:
+        conv.error(
+            SPEC147,
+            f"thread_priority {block.thread_priority} is set, but the block is not is_async: true",
+            "set is_async: true, or leave thread_priority out (Jazzy reads it only for an async component)",
+            f"ros2_control:{block.name}",
+            conv.where((*path, "thread_priority")),
+        )
+        return None
+    return block.thread_priority
 
 
 # What a joint interface's value is, by interface and joint type (convert.py's tables).

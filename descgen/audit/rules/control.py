@@ -819,3 +819,28 @@ def ros2_control_parser_throws(robot: Robot) -> Iterator[Finding]:
             f"ros2_control:{block}",
             where,
         )
+
+
+@rule("CTRL067", "rw-rate-above-update-rate", "warning")
+def rw_rate_above_update_rate(robot: Robot) -> Iterator[Finding]:
+    """## What it does
+    Finds a `<ros2_control>` block whose `rw_rate` is above the controller manager's
+    `update_rate`.
+    ## Why is this bad?
+    A component is read and written from the controller manager's loop, so it cannot run
+    faster: Jazzy's resource manager replaces such an rw_rate (and 0) with the update rate
+    (resource_manager.cpp, jazzy). The value written is not the rate the hardware gets.
+    """
+    rc = robot.ros2_control
+    if rc is None or rc.update_rate is None:
+        return
+    for b in rc.hardware_blocks():
+        if b.rw_rate is not None and b.rw_rate > rc.update_rate:
+            yield at(
+                "CTRL067",
+                b,
+                f"ros2_control block '{b.name}' has rw_rate {b.rw_rate} Hz, above the controller manager's "
+                f"update_rate {rc.update_rate:g} Hz: it runs at {rc.update_rate:g} Hz",
+                f"write rw_rate {rc.update_rate:g} Hz or less, or raise update_rate",
+                subject=f"ros2_control:{b.name}",
+            )

@@ -30,7 +30,7 @@ from descgen.core import model as m
 from descgen.core.findings import Finding, InputError, Where
 from descgen.core.xmlcompare import line_of
 from descgen.infra.safeio import read_bounded
-from descgen.physics import derive
+from descgen.physics import component_parser, derive
 from descgen.physics.hardware_info import parsed_bool
 from descgen.read import params
 from descgen.read.controllers import Parsed, manager_view, parse_substituted
@@ -152,13 +152,32 @@ def _joint_problem(je: etree._Element, robot: m.Robot) -> str | None:
     return None
 
 
+# the <ros2_control> attributes the spec holds (rw_rate and thread_priority as written canonically)
+_BLOCK_ATTRIBUTES = ("name", "type", "is_async", "rw_rate", "thread_priority")
+
+
+def _number_problem(block: etree._Element) -> str | None:
+    """rw_rate or thread_priority as the spec cannot give it back: not the plain decimal the
+    parser reads (std::stoi takes "50abc" as 50), or a thread_priority the parser ignores."""
+    rate, priority = block.get("rw_rate"), block.get("thread_priority")
+    if rate is not None and (component_parser.rw_rate(rate) is None or rate != str(component_parser.rw_rate(rate))):
+        return f"the block has rw_rate='{rate}', not a plain whole number of Hz"
+    if priority is not None:
+        value = component_parser.thread_priority(priority)
+        if value is None or priority != str(value) or block.get("is_async") != "true":
+            return f"the block has thread_priority='{priority}' (the spec holds one only for is_async=\"true\")"
+    return None
+
+
 def problem(block: etree._Element, robot: m.Robot) -> str | None:
     """Why ``block`` cannot be written in the spec's ``ros2_control:`` (None: it can)."""
     name = block.get("name", "")
-    if set(block.attrib) - {"name", "type", "is_async"}:
-        return f"the block has attributes {sorted(set(block.attrib) - {'name', 'type', 'is_async'})}"
+    if set(block.attrib) - set(_BLOCK_ATTRIBUTES):
+        return f"the block has attributes {sorted(set(block.attrib) - set(_BLOCK_ATTRIBUTES))}"
     if _not_plain_bool(block.get("is_async")):
         return f"the block has is_async='{block.get('is_async')}' (ros2_control reads only true/false)"
+    if (p := _number_problem(block)) is not None:
+        return p
     if not _NAME.fullmatch(name):
         return f"the block name '{name}' is not a plain identifier"
     if block.get("type", "system") not in ("system", "actuator", "sensor"):
@@ -169,8 +188,11 @@ def problem(block: etree._Element, robot: m.Robot) -> str | None:
     plugins = hw[0].findall("plugin")
     if len(plugins) != 1 or not _PLUGIN.fullmatch((plugins[0].text or "").strip()):
         return "the hardware plugin is missing, repeated or not a plugin name"
-    if any(c.tag not in ("plugin", "param") for c in _elements(hw[0])):
-        return "the hardware holds elements other than <plugin> and <param>"
+    if any(c.tag not in ("plugin", "param", "group") for c in _elements(hw[0])):
+        return "the hardware holds elements other than <plugin>, <param> and <group>"
+    groups = hw[0].findall("group")
+    if len(groups) > 1 or any(not _NAME.fullmatch(g.text or "") or _elements(g) or g.attrib for g in groups):
+        return "the hardware's <group> is repeated or not a plain name"
     if (p := _params_problem(hw[0], "hardware")) is not None:
         return p
     for c in _elements(block):
@@ -272,9 +294,15 @@ def block_data(block: etree._Element, robot: m.Robot, w: SpecWriter, source: Cal
     hardware: Data = {"plugin": (hw.findtext("plugin") or "").strip()}
     if params := _params(hw):
         hardware["params"] = params
+    if (group := hw.findtext("group")) is not None:
+        hardware["group"] = group
     out: Data = {"name": block.get("name", ""), "type": block.get("type", "system")}
     if block.get("is_async") is not None:
         out["is_async"] = block.get("is_async", "").lower() == "true"
+    if block.get("rw_rate") is not None:
+        out["rw_rate"] = f"{block.get('rw_rate')} Hz"
+    if block.get("thread_priority") is not None:
+        out["thread_priority"] = int(block.get("thread_priority", ""))
     out["hardware"] = hardware
     joints = []
     for je in block.findall("joint"):
@@ -369,6 +397,9 @@ def block_differences(original: list[etree._Element], written: list[etree._Eleme
 
         eq("type", a.get("type", "system"), b.get("type", "system"))
         eq("is_async", (a.get("is_async") or "false").lower(), (b.get("is_async") or "false").lower())
+        eq("rw_rate", a.get("rw_rate"), b.get("rw_rate"))
+        eq("thread_priority", a.get("thread_priority"), b.get("thread_priority"))
+        eq("group", a.findtext("hardware/group"), b.findtext("hardware/group"))
         eq("plugin", (a.findtext("hardware/plugin") or "").strip(), (b.findtext("hardware/plugin") or "").strip())
         ha, hb = a.find("hardware"), b.find("hardware")
         eq("hardware params", _params(ha) if ha is not None else {}, _params(hb) if hb is not None else {})
