@@ -120,7 +120,8 @@ def test_a_block_the_spec_cannot_say_stays_pass_through(tmp_path: Path) -> None:
 
 
 def test_controllers_without_an_imported_block_are_still_said(tmp_path: Path) -> None:
-    block = BLOCK.replace("<hardware>", "<hardware><group>g</group>")
+    # <properties> has no spec field: the block is kept in pass-through, its controllers still said
+    block = BLOCK.replace("</hardware>", '</hardware><properties><async print_warnings="false"/></properties>')
     ctl = tmp_path / "c.yaml"
     ctl.write_text("controller_manager:\n  ros__parameters:\n    update_rate: 50\n")
     outcome = _import(_write(tmp_path, block), ctl)

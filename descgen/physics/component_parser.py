@@ -12,6 +12,7 @@ parser does (hardware_interface 4.43.0).
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterator
 
@@ -22,6 +23,12 @@ CHILDREN = ("hardware", "properties", "joint", "sensor", "gpio", "transmission")
 _BLANKS = " \t\n\r\f\v"
 
 Refusal = tuple[str, etree._Element]  # the parser's message, the element it is about
+
+
+def stripped(value: str) -> str:
+    """An attribute value as the parser uses it: stripped of " \\t\\n\\r\\f\\v" (hardware_interface
+    4.43.0; helpers.hpp strip), not of every Unicode space Python's str.strip() knows."""
+    return value.strip(_BLANKS)
 
 
 def _attr(e: etree._Element, name: str) -> str | None:
@@ -113,6 +120,38 @@ def thread_priority(text: str | None) -> int | None:
     return int(value)
 
 
+def _async(e: etree._Element) -> Refusal | None:
+    """The first throw among ``<async>``'s attributes, in the order the parser reads them
+    (affinity, thread_priority, print_warnings; P:742-764): one try block, one message."""
+    affinity = _attr(e, "affinity")
+    if affinity is not None and (why := _array_problem(affinity)):
+        return why, e
+    return _positive(e, "thread_priority", "thread_priority") or _bool(e, "print_warnings")
+
+
+# parse_array<int> (lexical_casts.hpp, LH:116-180), its three checks in order, then each item as
+# hardware_interface::stod reads it: a plain decimal (optional sign, fraction, exponent), finite
+_FLAT = re.compile(r"\[\s*([^\[\]]*\s*(,\s*[^\[\]]+\s*)*)?\]")
+_EMPTY = re.compile(r"\[\s*\]")
+_COMMAS = re.compile(r"\[\s*([^,\s]+(\s*,\s*[^,\s]+)*)?\s*\]")
+_ITEM = re.compile(r"[^\s,\[\]]+")
+_DECIMAL = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+
+
+def _array_problem(text: str) -> str | None:
+    """parse_array<int>'s message for ``text``, or None when it parses."""
+    if not _FLAT.fullmatch(text):  # std::regex_match: the whole string
+        return "String must be a flat array: starts with '[' and ends with ']', no nested arrays"
+    if _EMPTY.fullmatch(text):
+        return None
+    if not _COMMAS.fullmatch(text):
+        return "String must be a flat array with comma-separated values and no spaces between them"
+    for item in _ITEM.findall(text):
+        if not _DECIMAL.fullmatch(item) or not math.isfinite(float(item)):
+            return f"Failed converting string to floating point or integer: {item}"
+    return None
+
+
 def _params(e: etree._Element, context: str) -> Iterator[Refusal]:
     """Row 6: a ``<param>`` without a name (P:361-364)."""
     for p in e.findall("param"):
@@ -184,10 +223,8 @@ def refusals(block: etree._Element) -> list[Refusal]:
             out += _params(c, name)
         elif c.tag == "properties":
             async_ = c.find("async")
-            if async_ is not None:
-                for found in (_positive(async_, "thread_priority", "thread_priority"), _bool(async_, "print_warnings")):
-                    if found:
-                        out.append((f"Error parsing async tag: {found[0]}", async_))
+            if async_ is not None and (found := _async(async_)):
+                out.append((f"Error parsing async tag: {found[0]}", async_))
         elif c.tag in ("joint", "sensor", "gpio"):
             out += _component(c)
         elif c.tag == "transmission":

@@ -367,7 +367,7 @@ class _Reader:
                     return None
                 return value
 
-            out.append(m.Interface(ie.get("name", ""), f("min"), f("max"), f("initial_value"), ie.get("data_type")))
+            out.append(m.Interface(_stripped_name(ie), f("min"), f("max"), f("initial_value"), ie.get("data_type")))
         return tuple(out)
 
     def ros2_control(
@@ -393,10 +393,10 @@ class _Reader:
             hw = block.find("hardware")
             hardware.append(
                 m.HardwareBlock(
-                    block.get("name", ""),
+                    _stripped_name(block),
                     (hw.findtext("plugin") or "").strip() if hw is not None else "",
                     tuple(
-                        (p.get("name", ""), (p.text or "").strip())
+                        (_stripped_name(p), (p.text or "").strip())
                         for p in (hw.findall("param") if hw is not None else [])
                     ),
                     self.where(block),
@@ -415,34 +415,34 @@ class _Reader:
             for je in block.findall("joint"):
                 joints.append(
                     m.ControlJoint(
-                        je.get("name", ""),
+                        _stripped_name(je),
                         self.interfaces(je, "command_interface"),
                         self.interfaces(je, "state_interface"),
                         where=self.where(je),
                         mimic=je.get("mimic"),
-                        params=tuple((p.get("name", ""), (p.text or "").strip()) for p in je.findall("param")),
-                        block=block.get("name", ""),
+                        params=tuple((_stripped_name(p), (p.text or "").strip()) for p in je.findall("param")),
+                        block=_stripped_name(block),
                     )
                 )
             for se in block.findall("sensor"):
                 sensors.append(
                     m.ControlSensor(
-                        se.get("name", ""),
+                        _stripped_name(se),
                         self.interfaces(se, "state_interface"),
                         self.where(se),
-                        params=tuple((p.get("name", ""), (p.text or "").strip()) for p in se.findall("param")),
-                        block=block.get("name", ""),
+                        params=tuple((_stripped_name(p), (p.text or "").strip()) for p in se.findall("param")),
+                        block=_stripped_name(block),
                     )
                 )
             for ge in block.findall("gpio"):
                 gpios.append(
                     m.ControlGpio(
-                        ge.get("name", ""),
+                        _stripped_name(ge),
                         self.interfaces(ge, "command_interface"),
                         self.interfaces(ge, "state_interface"),
                         self.where(ge),
-                        block.get("name", ""),
-                        tuple((p.get("name", ""), (p.text or "").strip()) for p in ge.findall("param")),
+                        _stripped_name(block),
+                        tuple((_stripped_name(p), (p.text or "").strip()) for p in ge.findall("param")),
                     )
                 )
         sim = tuple(
@@ -452,7 +452,7 @@ class _Reader:
         )
         b = hardware[0]
         return m.Ros2Control(
-            blocks[0].get("name", ""),
+            _stripped_name(blocks[0]),
             blocks[0].get("type", ""),
             b.plugin,
             b.params,
@@ -469,6 +469,12 @@ class _Reader:
             thread_priority=b.thread_priority,
             group=b.group,
         ), tuple(refused)
+
+
+def _stripped_name(e: etree._Element) -> str:
+    """A ``<ros2_control>`` name attribute as Jazzy's parser uses it (stripped, hardware_interface
+    4.43.0): `` pan `` is the URDF's joint ``pan`` there too."""
+    return component_parser.stripped(e.get("name", ""))
 
 
 def _bool(text: str | None) -> bool | None:
