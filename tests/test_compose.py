@@ -144,6 +144,10 @@ def test_the_evidence_page_lists_the_composition(cell: Path) -> None:
         (("prefix: right_\n    parent: cell_floor", "prefix: right_\n    parent: ceiling"), "SPEC143",
          "'ceiling' is not a frame of warehouse_cell"),
         (("prefix: right_", "prefix: left_"), "SPEC144", "is already a link here"),
+        (("spec: warehouse_arm.yaml\n    prefix: right_", "spec: world_arm.yaml\n    prefix: right_"), "SPEC144",
+         "root is the global frame 'world'"),
+        (("spec: warehouse_arm.yaml\n    prefix: right_", "spec: prefixed_arm.yaml\n    prefix: right_"), "SPEC144",
+         "has its own prefix: 'p_'"),
     ],
 )  # fmt: skip
 def test_a_composition_that_cannot_work_is_refused(
@@ -152,6 +156,15 @@ def test_a_composition_that_cannot_work_is_refused(
     old, new = edit
     assert old in CELL
     spec = _project(tmp_path, CELL.replace(old, new))
+    arm = (spec.parent / "warehouse_arm.yaml").read_text()
+    # the example hung from a 'world' root, and the example with a prefix of its own
+    world = arm.replace("links:\n", "links:\n  - name: world\n", 1).replace(
+        "joints:\n", "joints:\n  - {name: world_joint, type: fixed, parent: world, child: base_footprint}\n", 1
+    )
+    (spec.parent / "world_arm.yaml").write_text(world)
+    (spec.parent / "prefixed_arm.yaml").write_text(
+        arm.replace("\nname: warehouse_arm\n", "\nname: warehouse_arm\nprefix: p_\n", 1)
+    )
     r = cli("validate", spec)
     assert r.returncode == 2
     assert any(f"error[{code}]" in line and needle in line for line in r.stderr.splitlines()), r.stderr[-3000:]

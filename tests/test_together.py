@@ -86,3 +86,24 @@ def test_one_file_per_description_or_none(tmp_path: Path) -> None:
     assert "error[GRAPH010]: --controllers is given 2 times" in r.stderr
     r = cli("audit", a, b, "--together")  # no controllers at all: each robot as it is
     assert r.returncode == 1 and "GRAPH001" in r.stderr
+
+
+def test_a_moveit_config_is_one_robots(tmp_path: Path) -> None:
+    r = cli("audit", DATA / "a.urdf", DATA / "b.urdf", "--together", "--moveit-config", tmp_path)
+    assert r.returncode == 2 and "error[GRAPH010]: --moveit-config is given with --together" in r.stderr
+
+
+def test_two_specs_in_two_namespaces_share_no_joint_states(tmp_path: Path) -> None:
+    """Frames still collide (one /tf for all), joints do not (each namespace its /joint_states)."""
+    shutil.copytree(EXAMPLE_SPEC.parent, tmp_path / "specs")
+    text = EXAMPLE_SPEC.read_text()
+    moveit = text.index("\nmoveit:")
+    end = text.index("\nknown_poses:")
+    base = text[:moveit] + text[end:]  # the MoveIt package does not run in a namespace (SPEC148)
+    for ns in ("a", "b"):
+        (tmp_path / "specs" / f"{ns}.yaml").write_text(
+            base.replace("\nname: warehouse_arm\n", f"\nname: warehouse_arm\nnamespace: {ns}\n", 1)
+        )
+    r = cli("audit", tmp_path / "specs" / "a.yaml", tmp_path / "specs" / "b.yaml", "--together", "--format", "json")
+    codes = [c for c, *_ in _graph(r.stdout)]
+    assert "GRAPH001" in codes and "GRAPH002" not in codes

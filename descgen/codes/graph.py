@@ -29,7 +29,8 @@ GRAPH002 = declare(
     "A moving joint has the same name in two robots audited together: in one namespace their joint_states mix.",
     """Both robots' joint_state_broadcasters publish on /joint_states when they share a namespace, and each
       robot_state_publisher moves its joint of that name with whichever robot's position came last. Prefix the
-      joints, or run each robot in its own namespace (then waive this finding).""",
+      joints, or run each robot in its own namespace: two specs with different namespace: are not compared; for
+      descriptions, whose namespace is the launch file's, accept the finding with --baseline.""",
 )
 
 GRAPH003 = declare(
@@ -55,7 +56,8 @@ GRAPH010 = declare(
     "GRAPH010",
     "per-robot-files-mismatch",
     "error",
-    "--controllers or --srdf is given more than once, but not once per URDF or Xacro audited with --together.",
+    "--controllers or --srdf is given more than once, but not once per URDF or Xacro audited with --together; or "
+    "--moveit-config is given with --together.",
     """With --together, each URDF or Xacro given is one robot, and a controllers YAML or SRDF given for it is
       matched by order: the first --controllers to the first URDF or Xacro, and so on (a spec brings its own).
       Without --together, give each option once.""",

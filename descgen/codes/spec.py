@@ -655,6 +655,16 @@ SPEC147 = declare(
       written would mean nothing. Set is_async: true, or leave thread_priority out.""",
 )
 
+SPEC148 = declare(
+    "SPEC148",
+    "moveit-with-namespace",
+    "error",
+    "A spec sets both moveit: and namespace:; descgen's MoveIt config package does not run in a namespace yet.",
+    """The MoveIt package's launch files start ros2_control_node, move_group and the spawners at the root namespace,
+      while the namespaced controllers YAML names /<ns>/controller_manager: the package would not run. Leave one
+      out (docs/multi-robot.md).""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",

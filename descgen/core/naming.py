@@ -19,3 +19,8 @@ def mirror_name(name: str) -> str | None:
             swap = swap.upper() if p.isupper() else swap.capitalize() if p[:1].isupper() else swap
             return "_".join([*parts[:i], swap, *parts[i + 1 :]])
     return None
+
+
+# frames of the world, not of one robot (REP 105): shared by every robot of a graph, so never
+# prefixed (descgen/spec/prefix.py) and never asked to carry a prefix (NAME014)
+GLOBAL_FRAMES = frozenset({"map", "earth", "world"})

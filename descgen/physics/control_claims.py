@@ -50,10 +50,28 @@ FT_INTERFACES = ("force.x", "force.y", "force.z", "torque.x", "torque.y", "torqu
 JOINT_PARAMS = ("joints", "command_joints", "joint", "left_wheel_names", "right_wheel_names")
 # parameters that name a frame or a ros2_control sensor of the robot
 FRAME_PARAMS = ("base_frame_id", "odom_frame_id", "frame_id", "sensor_name")
-# frame parameters whose jazzy default (descgen/physics/controller_params.py) is a frame name
-DEFAULT_FRAMES = {
-    "diff_drive_controller/DiffDriveController": (("odom_frame_id", "odom"), ("base_frame_id", "base_link")),
-}
+ODOMETRY_FRAMES = ("odom_frame_id", "base_frame_id")
+
+
+def default_frames(ctype: str) -> tuple[tuple[str, str], ...]:
+    """(parameter, Jazzy's default) for each odometry frame id ``ctype`` declares with a frame
+    name as its default (descgen/physics/controller_params.py: diff drive, mecanum, omni,
+    tricycle, the steering controllers): left unset, the controller publishes that frame."""
+    from descgen.physics.controller_params import definitions
+
+    return tuple(
+        (d.name, d.default)
+        for d in definitions(ctype)
+        if d.name in ODOMETRY_FRAMES and isinstance(d.default, str) and d.default
+    )
+
+
+def prefixes_tf_frames(ctype: str) -> bool:
+    """Whether ``ctype`` declares ``tf_frame_prefix_enable`` (default true: in a namespace it
+    writes the namespace before its frame ids)."""
+    from descgen.physics.controller_params import definitions
+
+    return any(d.name == "tf_frame_prefix_enable" for d in definitions(ctype))
 
 
 @record

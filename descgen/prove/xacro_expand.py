@@ -193,7 +193,9 @@ def xacro_variants_match(files: dict[str, str], robot: Robot, where: Path) -> li
             why = "; ".join(f.message for f in exc.findings)
             out.append(_gen001(f"xacro {xacro_path} hardware:={variant.name} failed: {why}", xacro_path, loc))
             continue
-        expected = _variant_document(files[f"urdf/{robot.name}.urdf"], rc, variant.name, folder, GZ_SIM_PLUGIN)
+        expected = _variant_document(
+            files[f"urdf/{robot.name}.urdf"], rc, variant.name, folder, GZ_SIM_PLUGIN, robot.namespace
+        )
         diff = first_difference(parse(text), expected)
         if diff:
             out.append(
@@ -204,10 +206,12 @@ def xacro_variants_match(files: dict[str, str], robot: Robot, where: Path) -> li
     return out
 
 
-def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim: tuple[str, str]) -> etree._Element:
+def _variant_document(
+    urdf: str, rc: Ros2Control, variant: str, folder: str, sim: tuple[str, str], namespace: str | None = None
+) -> etree._Element:
     """The default URDF with each block's hardware of ``variant`` (and Gazebo's sim plugin for
-    gazebo). A block of the file the model does not know keeps its hardware, so the comparison
-    reports it."""
+    gazebo, in the robot's namespace when it has one). A block of the file the model does not know
+    keeps its hardware, so the comparison reports it; a block's ``<group>`` is every variant's."""
     doc = parse(urdf)
     chosen = {b.name: v for b in rc.hardware_blocks() for v in b.variants if v.name == variant}
     for block in doc.findall("ros2_control"):
@@ -216,7 +220,8 @@ def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim
         if hw is None or v is None:
             continue
         for child in list(hw):
-            hw.remove(child)
+            if child.tag != "group":
+                hw.remove(child)
         etree.SubElement(hw, "plugin").text = v.plugin
         for k, val in v.params:
             etree.SubElement(hw, "param", name=k).text = val
@@ -226,6 +231,8 @@ def _variant_document(urdf: str, rc: Ros2Control, variant: str, folder: str, sim
         gazebo = etree.Element("gazebo")
         plugin = etree.SubElement(gazebo, "plugin", filename=sim[0], name=sim[1])
         etree.SubElement(plugin, "parameters").text = f"{folder}/config/ros2_controllers.yaml"
+        if namespace:
+            etree.SubElement(etree.SubElement(plugin, "ros"), "namespace").text = "/" + namespace.strip("/")
         names = {b.name for b in rc.hardware_blocks()}
         blocks = [e for e in doc.findall("ros2_control") if e.get("name", "") in names]
         if blocks:

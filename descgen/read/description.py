@@ -227,6 +227,17 @@ def audit_together(
     from descgen.audit import together
     from descgen.codes.graph import GRAPH010
 
+    if options.moveit_config is not None:
+        raise InputError(
+            [
+                GRAPH010.finding(
+                    "--moveit-config is given with --together; a MoveIt config package is one robot's",
+                    "audit the robot with its MoveIt config on its own, and the robots together without it",
+                    "option",
+                    Where("<command line>"),
+                )
+            ]
+        )
     described = [p for p in paths if kind_of(p) != "spec"]
     for option, files in (("--controllers", controllers), ("--srdf", srdfs)):
         if files and len(files) != len(described):

@@ -28,8 +28,11 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
     def shown(name: str) -> str:  # the Xacro writes the prefix as its argument (render/views.py)
         return prefix_arg(name, prefix)
 
+    frames = {lk.name for lk in robot.links} if prefix else set()
+
     def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
-        return [(k, text(v)) for k, v in items]
+        # a param naming one of the robot's frames (a sensor's frame_id) takes the prefix argument too
+        return [(k, shown(v) if v in frames else text(v)) for k, v in items]
 
     block_of = {cj.name: cj.block for cj in rc.joints}
     joints = derive.interfaces_with_limits(robot)

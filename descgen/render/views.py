@@ -29,6 +29,7 @@ from descgen.core.model import (
     Sphere,
     Visual,
 )
+from descgen.core.naming import GLOBAL_FRAMES
 from descgen.core.record import record
 from descgen.render.formatting import num, vec, xacro_text
 
@@ -303,7 +304,9 @@ PREFIX_ARG = "$(arg prefix)"
 def prefix_arg(name: str, prefix: str) -> str:
     """``name`` with its leading ``prefix`` written as the Xacro's prefix argument (a name
     without it, such as a shared ``world``, is written as is)."""
-    return PREFIX_ARG + name[len(prefix) :] if prefix and name.startswith(prefix) else name
+    if not prefix or not name.startswith(prefix) or name in GLOBAL_FRAMES:  # "world" with prefix "wo"
+        return name
+    return PREFIX_ARG + name[len(prefix) :]
 
 
 def calibration_keys(robot: Robot) -> dict[str, str]:

@@ -14,6 +14,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from descgen.codes.spec import SPEC148
 from descgen.core import model as m
 from descgen.core import units
 from descgen.core.findings import Finding, Where
@@ -24,7 +25,7 @@ from descgen.spec.convert import Converter
 from descgen.spec.joints import joint
 from descgen.spec.links import link
 from descgen.spec.moveit import moveit
-from descgen.spec.prefix import prefixed
+from descgen.spec.prefix import namespaced, prefixed
 from descgen.spec.ros2_control import ros2_control
 from descgen.spec.rules import duplicate_materials, duplicate_semantics
 from descgen.spec.semantic import complete_states, known_pose, semantic
@@ -118,7 +119,15 @@ class Builder:
         if spec.moveit is not None:
             robot = replace(robot, moveit=moveit(conv, spec.moveit, robot))
         if spec.namespace:
-            robot = replace(robot, namespace=spec.namespace)
+            robot = namespaced(robot, spec.namespace)
+            if spec.moveit is not None:
+                conv.error(
+                    SPEC148,
+                    "moveit: and namespace: are both set; the MoveIt config package does not run in a namespace yet",
+                    "leave namespace: out for the MoveIt package, or moveit: out for the namespaced robot",
+                    "namespace",
+                    conv.where(("namespace",)),
+                )
         if spec.prefix:  # last: everything above names things as the spec does, unprefixed
             robot = prefixed(robot, spec.prefix, conv.where(("prefix",)))
         return robot

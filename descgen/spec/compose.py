@@ -22,6 +22,7 @@ from dataclasses import replace
 from descgen.codes.spec import SPEC143, SPEC144, SPEC145
 from descgen.core import model as m
 from descgen.core.findings import Finding, Where
+from descgen.core.naming import GLOBAL_FRAMES
 from descgen.meshes.paths import package_name
 from descgen.spec.prefix import prefixed
 
@@ -58,6 +59,24 @@ def mounted(
             )
         )
     root = sub.root()
+    if root in GLOBAL_FRAMES:
+        problems.append(
+            SPEC144.finding(
+                f"{sub.name}'s root is the global frame '{root}', which every robot shares: it cannot be mounted",
+                f"give {sub.name} a root of its own (e.g. base_link on a fixed joint from {root}), and mount that",
+                f"compose:{prefix}",
+                where,
+            )
+        )
+    if sub.prefix is not None:
+        problems.append(
+            SPEC144.finding(
+                f"{sub.name}'s spec has its own prefix: '{sub.prefix.value}', and compose: gives it '{prefix}'",
+                "remove prefix: from the mounted spec (compose: gives each copy its own)",
+                f"compose:{prefix}",
+                where,
+            )
+        )
     if problems or root is None:
         return host, problems
     p = prefixed(sub, prefix, where)
@@ -294,7 +313,18 @@ def _semantic(a: m.Semantic | None, b: m.Semantic | None, prefix: str) -> m.Sema
         for e in b.end_effectors
     )
     if a is None:
-        return replace(b, groups=groups, states=states, end_effectors=effectors, virtual_joints=(), robot_name=None)
+        settings = b.collision_matrix
+        if settings is not None and settings.default_state is not None:  # a state of b: renamed above
+            settings = replace(settings, default_state=g(settings.default_state))
+        return replace(
+            b,
+            groups=groups,
+            states=states,
+            end_effectors=effectors,
+            virtual_joints=(),
+            robot_name=None,
+            collision_matrix=settings,
+        )
     return replace(
         a,
         groups=a.groups + groups,

@@ -16,6 +16,7 @@ from pydantic import ValidationError
 from descgen.codes.spec import SPEC003, SPEC142
 from descgen.core.findings import Finding, InputError, errors
 from descgen.core.model import Robot
+from descgen.core.naming import GLOBAL_FRAMES
 from descgen.core.record import record
 from descgen.core.units import Range
 from descgen.infra import collector
@@ -28,7 +29,6 @@ from descgen.spec.errors import data_path, findings_from
 from descgen.spec.geometry import pose
 from descgen.spec.models import RobotSpec
 from descgen.spec.plausibility import ranges_from
-from descgen.spec.prefix import GLOBAL_FRAMES
 from descgen.spec.quantity import MEMO, Measured
 from descgen.spec.rules import derived_package_name, missing_sources
 

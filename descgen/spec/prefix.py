@@ -23,13 +23,12 @@ from dataclasses import replace
 
 from descgen.core import model as m
 from descgen.core.findings import Where
-from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, split
+from descgen.core.naming import GLOBAL_FRAMES
+from descgen.physics.control_claims import FRAME_PARAMS, default_frames, prefixes_tf_frames, split
 
 # controller parameters that hold the prefix itself (the UR controllers' tf_prefix): the spec
 # writes them empty, and they take the robot's prefix
 PREFIX_PARAMS = ("tf_prefix", "prefix")
-# frames of the world, not of one robot (REP 105): shared by every robot of a graph
-GLOBAL_FRAMES = frozenset({"map", "earth", "world"})
 
 
 def prefixed(robot: m.Robot, prefix: str, where: Where) -> m.Robot:
@@ -162,7 +161,7 @@ def _controller(c: m.Controller, p: Callable[[str], str], own: frozenset[str]) -
     params = tuple((key(k), prefixed_value(k, v)) for k, v in c.params)
     given = {k for k, _ in params}
     # unset, the controller would publish its default frames, the same for every robot: set, prefixed
-    added = tuple((k, p(default)) for k, default in DEFAULT_FRAMES.get(c.type, ()) if k not in given)
+    added = tuple((k, p(default)) for k, default in default_frames(c.type) if k not in given)
     return replace(c, params=params + added)
 
 
@@ -190,7 +189,28 @@ def _semantic(sem: m.Semantic, p: Callable[[str], str]) -> m.Semantic:
             for st in sem.states
         ),
         end_effectors=tuple(replace(e, parent_link=p(e.parent_link)) for e in sem.end_effectors),
-        virtual_joints=tuple(replace(v, name=p(v.name), child_link=p(v.child_link)) for v in sem.virtual_joints),
+        # the frame it hangs from is the robot's own odometry frame (left_odom), or a global one
+        virtual_joints=tuple(
+            replace(v, name=p(v.name), child_link=p(v.child_link), parent_frame=p(v.parent_frame))
+            for v in sem.virtual_joints
+        ),
         passive_joints=names(sem.passive_joints),
         disabled_collisions=tuple(replace(d, link1=p(d.link1), link2=p(d.link2)) for d in sem.disabled_collisions),
     )
+
+
+def namespaced(robot: m.Robot, namespace: str) -> m.Robot:
+    """``robot`` to run in ``namespace``: a controller that would write the namespace before its
+    tf frame ids (``tf_frame_prefix_enable``, default true in Jazzy: ``left/odom``) is told not to,
+    since the frames it publishes are the robot's own names (prefixed by ``prefix:``), which the
+    URDF's frames must meet."""
+    rc = robot.ros2_control
+    if rc is None:
+        return replace(robot, namespace=namespace)
+    controllers = tuple(
+        replace(c, params=(*c.params, ("tf_frame_prefix_enable", False)))
+        if prefixes_tf_frames(c.type) and c.param("tf_frame_prefix_enable") is None
+        else c
+        for c in rc.controllers
+    )
+    return replace(robot, namespace=namespace, ros2_control=replace(rc, controllers=controllers))

@@ -70,10 +70,10 @@ def mobile_base_without_footprint(robot: Robot) -> Iterator[Finding]:
 
 
 def _has(robot: Robot, name: str) -> bool:
-    """Every base of the robot has the REP 105 frame ``name``, behind its prefix: each robot a spec
-    composed, else each diff drive's base frame (``left_base_footprint``: ``left_``), else the
-    robot's own declared prefix."""
-    prefixes = {mt.prefix for mt in robot.mounted} or _drive_prefixes(robot) or {_prefixed(robot, "")}
+    """Every base of the robot has the REP 105 frame ``name``, behind its prefix: each diff drive's
+    base frame says where a base is (``left_base_footprint``: ``left_``), else each robot a spec
+    composed, else the robot's own declared prefix."""
+    prefixes = _drive_prefixes(robot) or {mt.prefix for mt in robot.mounted} or {_prefixed(robot, "")}
     return all(robot.link(p + name) is not None for p in prefixes)
 
 

@@ -10,7 +10,8 @@ from descgen.audit.registry import at, rule
 from descgen.core.findings import Finding
 from descgen.core.launch_subst import unresolved
 from descgen.core.model import Joint, Link, Robot
-from descgen.physics.control_claims import DEFAULT_FRAMES, FRAME_PARAMS, joint_params, names
+from descgen.core.naming import GLOBAL_FRAMES
+from descgen.physics.control_claims import FRAME_PARAMS, default_frames, joint_params, names
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
@@ -106,7 +107,7 @@ def name_without_prefix(robot: Robot) -> Iterator[Finding]:
     for j in robot.joints:
         if not j.name.startswith(p.value):
             yield lacking("joint", j.name, j)
-        if j.child and not j.child.startswith(p.value):
+        if j.child and not j.child.startswith(p.value) and j.child not in GLOBAL_FRAMES:
             lk = robot.link(j.child)
             yield lacking("frame", j.child, lk if lk is not None else j, f"link:{j.child}")
     rc = robot.ros2_control
@@ -117,13 +118,13 @@ def name_without_prefix(robot: Robot) -> Iterator[Finding]:
             if not e.name.startswith(p.value):
                 yield lacking(kind, e.name, e, f"ros2_control:{e.name}")
     for c in rc.controllers:
-        for key, default in DEFAULT_FRAMES.get(c.type, ()):
+        for key, default in default_frames(c.type):
             if c.param(key) is None:  # unset: the controller publishes its default, unprefixed
                 unset = f"controller '{c.name}' {key} (unset, so its default)"
                 yield lacking(unset, default, c, f"controller:{c.name}")
         for key in (*joint_params(c), *FRAME_PARAMS):
             value = c.param(key)
             for i, name in enumerate(names(value)):
-                if not name.startswith(p.value) and not unresolved(name):
+                if not name.startswith(p.value) and name not in GLOBAL_FRAMES and not unresolved(name):
                     index = i if isinstance(value, tuple | list) else None
                     yield lacking(f"controller '{c.name}' {key}", name, Param(c, key, index))

@@ -14,8 +14,9 @@ from typing import Any
 from lxml import etree
 
 from descgen.core import model as m
+from descgen.core.naming import GLOBAL_FRAMES
 from descgen.physics.control_claims import FRAME_PARAMS
-from descgen.spec.prefix import GLOBAL_FRAMES, PREFIX_PARAMS
+from descgen.spec.prefix import PREFIX_PARAMS
 
 
 def names_behind(prefix: str, robot: m.Robot, root: etree._Element) -> set[str] | None:
