@@ -230,9 +230,14 @@ def _control(host: m.Robot, p: m.Robot, prefix: str, where: Where) -> tuple[m.Ro
     a, b = host.ros2_control, p.ros2_control
     if b is None:
         return a, []
+    # one joint_state_broadcaster without a joint list publishes every joint of the controller
+    # manager: a second one (the mounted robot's) would publish them all again
+    broadcasts_all = a is not None and any(_broadcasts_all(c) for c in a.controllers)
     b = replace(
         b,
-        controllers=tuple(replace(c, name=prefix + c.name) for c in b.controllers),
+        controllers=tuple(
+            replace(c, name=prefix + c.name) for c in b.controllers if not (broadcasts_all and _broadcasts_all(c))
+        ),
         # hardware component names: one controller manager holds both robots' blocks
         name=prefix + b.name,
         blocks=tuple(replace(hb, name=prefix + hb.name) for hb in b.blocks),
@@ -275,6 +280,10 @@ def _control(host: m.Robot, p: m.Robot, prefix: str, where: Where) -> tuple[m.Ro
         sim_plugins=a.sim_plugins + tuple(s for s in b.sim_plugins if s not in a.sim_plugins),
     )
     return merged, problems
+
+
+def _broadcasts_all(c: m.Controller) -> bool:
+    return c.type == "joint_state_broadcaster/JointStateBroadcaster" and not c.param("joints")
 
 
 Owned = tuple[m.HardwareBlock, tuple[m.ControlJoint, ...], tuple[m.ControlSensor, ...], tuple[m.ControlGpio, ...]]
