@@ -336,9 +336,9 @@ def test_every_reader_resolves_the_corpus_meshes_alike(
     """Each corpus robot's meshes, named across sibling packages: the audit's loader, view,
     simulate's MuJoCo emitter and the sweep's collision model use the same files, whether the
     corpus is given with --package-path or as a sourced ROS_PACKAGE_PATH."""
-    from descgen.commands.simulate.mujoco_urdf import emit
     from descgen.commands.view import mesh_plan
     from descgen.read.description import Options, load_description
+    from descgen.render.mujoco_urdf import emit
 
     xacro = CORPUS / str(case["xacro"])
     args = {str(k): str(v) for k, v in dict(case.get("args") or {}).items()}  # type: ignore[call-overload]

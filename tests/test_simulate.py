@@ -17,7 +17,7 @@ mujoco = pytest.importorskip("mujoco", reason="descgen simulate needs the option
 from descgen.audit.spec import load_spec  # noqa: E402
 from descgen.commands.simulate import Settings, gravity, simulate  # noqa: E402
 from descgen.commands.simulate.faults import CATALOGUE, plant_all  # noqa: E402
-from descgen.commands.simulate.mujoco_urdf import emit  # noqa: E402
+from descgen.render.mujoco_urdf import emit  # noqa: E402
 from tests.helpers import ROOT, cli, run_cli  # noqa: E402
 
 SPEC = ROOT / "specs" / "warehouse_arm.yaml"

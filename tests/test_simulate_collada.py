@@ -9,8 +9,8 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from descgen.commands.simulate.mujoco_urdf import emit
 from descgen.read.description import load_description
+from descgen.render.mujoco_urdf import emit
 
 from .helpers import cli
 from .test_simulate import _package, _with_mesh, _write

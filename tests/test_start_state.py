@@ -11,9 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from descgen.commands.simulate import default_base, pose_values
+from descgen.commands.simulate import pose_values
 from descgen.core.model import Controller, GroupState, Joint, Limit, Link, Robot, Ros2Control, Semantic
 from descgen.physics import start_state
+from descgen.physics.start_state import default_base
 from descgen.physics.sweep import state_values
 from descgen.read.description import Options, load_description
 from tests.corpus import share

@@ -307,3 +307,25 @@ GEN095 = declare(
       reader follows such a drawing); frames.md lists every frame and its publisher, and frames.dot can
       still be drawn by hand (dot -Tsvg, or sfdp for a large tree).""",
 )
+
+GEN096 = declare(
+    "GEN096",
+    "mujoco-model-unbuildable",
+    "error",
+    "The MJCF model of the mujoco hardware variant cannot be made: a collision mesh that is not an STL or OBJ file "
+    "of the robot's own package, or a model MuJoCo refuses.",
+    """mujoco_ros2_control loads the MJCF file named by its mujoco_model parameter as it is, with plain mesh paths
+      (docs/mujoco_ros2_control.md); nothing converts meshes at launch. descgen simulate SPEC shows why MuJoCo
+      refuses a model.""",
+)
+
+GEN097 = declare(
+    "GEN097",
+    "mujoco-model-differs",
+    "error",
+    "The MJCF model written for hardware:=mujoco, compiled by MuJoCo, is not the URDF's robot: a joint, its range, "
+    "an actuator, a mimic equality or the mass differs.",
+    """The proof compiles the file as mujoco_ros2_control would and compares it with the model: every moving joint
+      with its type and range, one actuator per commanded ros2_control joint of the kind its first command needs, a
+      joint equality per mimic joint, and the total mass. A difference is descgen's conversion being wrong.""",
+)

@@ -665,6 +665,17 @@ SPEC148 = declare(
       out (docs/multi-robot.md).""",
 )
 
+SPEC149 = declare(
+    "SPEC149",
+    "mujoco-variant-plugin",
+    "error",
+    "The mujoco hardware variant names another plugin than mujoco_ros2_control/MujocoSystemInterface, or its own "
+    "mujoco_model.",
+    """Jazzy's mujoco_ros2_control (0.1.0) is the plugin mujoco_ros2_control/MujocoSystemInterface, and its
+      mujoco_model parameter is the MJCF file generate writes beside the URDF (mujoco/<robot>.xml), which the proofs
+      compile and compare with the robot (docs/mujoco_ros2_control.md).""",
+)
+
 SRDF010 = declare(
     "SRDF010",
     "group-state-unknown-pose",

@@ -47,7 +47,7 @@ _TOOLS = ("xacro", "lxml", "pint", "pydantic", "rosbags", "numpy", "PyYAML", "Ji
 # descgen's part in the page's key: bump when what the page says of the same inputs changes
 # (a section, a sentence, a proof it runs); tests/test_evidence_recompute.py fails until then
 # 2: sections 6-7 not applicable without a control run, BLIND SPOTS, cells escaped, both packages counted
-FORMAT = 2
+FORMAT = 3
 TARGET_FRAME = "odom"  # the tf-audit target: every sensor frame must reach the odometry frame
 
 
@@ -332,7 +332,8 @@ Proofs = Sequence[tuple[str, Sequence[Finding]]]
 
 
 def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | None) -> list[str]:
-    from descgen.prove import CHECKS, xacro_calibration_nominal
+    from descgen.prove import CHECKS, mujoco_model, xacro_calibration_nominal
+    from descgen.render import mjcf
 
     # the results plan() already has (the same checks on the same files), else run them here
     done = dict(proofs) if proofs is not None else {name: check(files, robot, package) for name, check in CHECKS}
@@ -353,6 +354,8 @@ def _model(files: dict[str, str], robot: Any, package: Path, proofs: Proofs | No
     for name, check in CHECKS:
         if check is xacro_calibration_nominal and not robot.calibration:
             continue  # nothing to take off: the row would pass on nothing
+        if check is mujoco_model and not mjcf.wanted(robot):
+            continue  # no hardware:=mujoco, no model to prove
         found = done[name]
         bad = sorted({f.code for f in found if f.severity in ("error", "warning")})
         notes = sorted({f.code for f in found if f.severity == "info"})

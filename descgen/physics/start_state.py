@@ -13,7 +13,7 @@ so the Setup Assistant's default state use).
 
 from __future__ import annotations
 
-from descgen.core.model import WITH_LIMITS, Joint, Robot
+from descgen.core.model import MULTI_DOF, WITH_LIMITS, Joint, Robot
 
 WHEELED_BASE_CONTROLLERS = frozenset(
     {  # controllers of a wheeled base: the robot drives on a floor (ros2_controllers jazzy plugin names)
@@ -55,3 +55,16 @@ def wheeled(robot: Robot) -> bool:
     """A wheeled base: its ros2_control runs a drive controller."""
     rc = robot.ros2_control
     return rc is not None and any(c.type in WHEELED_BASE_CONTROLLERS for c in rc.controllers)
+
+
+def default_base(robot: Robot) -> str:
+    """floor for a mobile robot (an SRDF virtual joint that is planar or floating, a root link
+    named base_footprint, or a drive controller: a wheeled base held in the air shows nothing
+    of how it stands), else fixed. A root named world is fixed by definition."""
+    root = robot.root()
+    if root is None or root == "world":
+        return "fixed"
+    virtual = robot.semantic.virtual_joints if robot.semantic else ()
+    if any(v.type in MULTI_DOF and v.child_link == root for v in virtual) or root == "base_footprint":
+        return "floor"
+    return "floor" if wheeled(robot) else "fixed"

@@ -14,6 +14,7 @@ from descgen.core.findings import Finding
 from descgen.core.model import Robot
 from descgen.prove.controllers import controllers_yaml
 from descgen.prove.known_poses import known_poses
+from descgen.prove.mujoco_model import mujoco_model
 from descgen.prove.package import package_xml
 from descgen.prove.semantic_roundtrip import controllers_roundtrip, ros2_control_roundtrip, srdf_roundtrip
 from descgen.prove.urdf_roundtrip import urdf_roundtrip, urdf_roundtrip_yourdfpy
@@ -28,6 +29,7 @@ __all__ = [
     "controllers_roundtrip",
     "controllers_yaml",
     "known_poses",
+    "mujoco_model",
     "package_xml",
     "ros2_control_roundtrip",
     "run_all",
@@ -55,6 +57,7 @@ CHECKS: list[tuple[str, Check]] = [
     ("the controllers YAML reads back as the model's", controllers_roundtrip),
     ("urdfdom's check_urdf accepts the URDF", check_urdf),
     ("known poses match forward kinematics", known_poses),
+    ("the MuJoCo model (hardware:=mujoco) compiles and is the URDF's robot", mujoco_model),
 ]
 
 

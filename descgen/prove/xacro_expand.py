@@ -194,7 +194,7 @@ def xacro_variants_match(files: dict[str, str], robot: Robot, where: Path) -> li
             out.append(_gen001(f"xacro {xacro_path} hardware:={variant.name} failed: {why}", xacro_path, loc))
             continue
         expected = _variant_document(
-            files[f"urdf/{robot.name}.urdf"], rc, variant.name, folder, GZ_SIM_PLUGIN, robot.namespace
+            files[f"urdf/{robot.name}.urdf"], rc, variant.name, folder, GZ_SIM_PLUGIN, robot.namespace, robot.name
         )
         diff = first_difference(parse(text), expected)
         if diff:
@@ -207,7 +207,13 @@ def xacro_variants_match(files: dict[str, str], robot: Robot, where: Path) -> li
 
 
 def _variant_document(
-    urdf: str, rc: Ros2Control, variant: str, folder: str, sim: tuple[str, str], namespace: str | None = None
+    urdf: str,
+    rc: Ros2Control,
+    variant: str,
+    folder: str,
+    sim: tuple[str, str],
+    namespace: str | None = None,
+    robot: str = "",
 ) -> etree._Element:
     """The default URDF with each block's hardware of ``variant`` (and Gazebo's sim plugin for
     gazebo, in the robot's namespace when it has one). A block of the file the model does not know
@@ -223,6 +229,8 @@ def _variant_document(
             if child.tag != "group":
                 hw.remove(child)
         etree.SubElement(hw, "plugin").text = v.plugin
+        if variant == "mujoco":  # the model generate writes beside the URDF (render/mjcf.py), a plain path
+            etree.SubElement(hw, "param", name="mujoco_model").text = f"{folder}/mujoco/{robot}.xml"
         for k, val in v.params:
             etree.SubElement(hw, "param", name=k).text = val
     if variant == "gazebo":

@@ -21,7 +21,7 @@ from descgen.infra import keys
 from descgen.infra.evidence_hash import sha256
 from descgen.infra.safeio import MIB, Codes, read_in_folder
 from descgen.meshes.paths import MESH_FOLDER, own_meshes
-from descgen.render import context, escaping, header
+from descgen.render import context, escaping, header, mjcf
 from descgen.render.escaping import TextEscaping, escape_text
 from descgen.render.formatting import comment, dot, mdcell, mdcode, mermaid, num, pyinner, pystr, vec, yamlstr
 
@@ -207,6 +207,9 @@ def render_package(
     for path, template, xacro in wanted:
         body = _render(env, template, contexts[xacro], templates)
         out[path] = header.add(path, body, spec_display, robot.spec_hash or "0" * 64)
+    mujoco_model = mjcf.path(robot)
+    if mjcf.wanted(robot) and (only is None or mujoco_model in only):  # hardware:=mujoco's model
+        out[mujoco_model] = header.add(mujoco_model, mjcf.model(robot).text, spec_display, robot.spec_hash or "0" * 64)
     return dict(sorted(out.items()))
 
 

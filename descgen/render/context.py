@@ -289,6 +289,8 @@ def build(robot: Robot, xacro: bool) -> dict[str, Any]:
         "control_mimic": {shown(cj.name): cj.mimic for cj in rc.joints if cj.mimic is not None} if rc else {},
         # the Xacro's prefix argument (its default) and the launch files' namespace
         "name_prefix": prefix,
+        # hardware:=mujoco's model, as mujoco_ros2_control reads it: a plain path (render/mjcf.py)
+        "mujoco_model": f"$(find {package_name(robot)})/mujoco/{robot.name}.xml",
         "namespace": robot.namespace.strip("/") if robot.namespace else "",
         **control_extras(robot, xacro),
         "controllers": controllers,

@@ -695,6 +695,7 @@ class ControlJointSpec(Base):
 
 MOCK_PLUGIN = "mock_components/GenericSystem"
 GZ_PLUGIN = "gz_ros2_control/GazeboSimSystem"
+MUJOCO_PLUGIN = "mujoco_ros2_control/MujocoSystemInterface"  # docs/mujoco_ros2_control.md
 
 
 class HardwareVariantSpec(Base):
@@ -717,9 +718,10 @@ class HardwareSpec(Base):
     params: HwParams = {}
     """Hardware `<param>`s (e.g. `device: /dev/ttyACM0`), written as given; GenericSystem params renamed before Jazzy
     are flagged (CTRL046)."""
-    variants: dict[Literal["gazebo", "real"], HardwareVariantSpec] = {}
-    """Other hardware under `gazebo` and `real`: the generated Xacro then takes `hardware:=mock|gazebo|real` (default
-    mock)."""
+    variants: dict[Literal["gazebo", "real", "mujoco"], HardwareVariantSpec] = {}
+    """Other hardware under `gazebo`, `real` and `mujoco`: the generated Xacro then takes
+    `hardware:=mock|gazebo|real|mujoco` (default mock). `mujoco` is mujoco_ros2_control with the MJCF model
+    generate writes (mujoco/<robot>.xml; docs/mujoco_ros2_control.md)."""
     group: Name | None = None
     """`<hardware><group>`: hardware components of one group are read and written together (Jazzy's resource
     manager); unset: not written."""
@@ -738,6 +740,14 @@ class HardwareSpec(Base):
                 "SPEC081",
                 f"variants.gazebo.plugin is '{gz.plugin}', but Jazzy simulates with {GZ_PLUGIN}",
                 f"leave plugin out or write {GZ_PLUGIN} (gazebo_ros2_control is Gazebo Classic, not in Jazzy)",
+            )
+        mj = self.variants.get("mujoco")
+        if mj is not None and (mj.plugin not in (None, MUJOCO_PLUGIN) or "mujoco_model" in mj.params):
+            raise error(
+                "SPEC149",
+                f"variants.mujoco is {mj.plugin or MUJOCO_PLUGIN} with params {sorted(mj.params)}: Jazzy's "
+                f"mujoco_ros2_control is {MUJOCO_PLUGIN}, and generate gives it mujoco_model",
+                f"leave plugin and mujoco_model out (write {MUJOCO_PLUGIN} if at all)",
             )
         real = self.variants.get("real")
         stand_ins = ("mock_components", "gz_ros2_control")

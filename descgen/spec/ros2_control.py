@@ -198,10 +198,10 @@ def _variants(conv: Converter, hw: s.HardwareSpec, path: Path_) -> tuple[m.Hardw
         return ()
     params = tuple((k, _param_text(v)) for k, v in hw.params.items())
     out = [m.HardwareVariant("mock", hw.plugin, params, conv.where(path))]
-    for name in ("gazebo", "real"):
+    for name in ("gazebo", "real", "mujoco"):
         v = hw.variants.get(name)
         if v is not None:
-            plugin = v.plugin or s.GZ_PLUGIN
+            plugin = v.plugin or (s.MUJOCO_PLUGIN if name == "mujoco" else s.GZ_PLUGIN)
             vparams = tuple((k, _param_text(x)) for k, x in v.params.items())
             out.append(m.HardwareVariant(name, plugin, vparams, conv.where((*path, "variants", name))))
     return tuple(out)

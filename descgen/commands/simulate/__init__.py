@@ -1,6 +1,6 @@
 """``descgen simulate``: MuJoCo as a consumer of the description.
 
-MuJoCo compiles the robot from its URDF (``mujoco_urdf``), which shows what it refuses and
+MuJoCo compiles the robot from its URDF (``descgen/render/mujoco_urdf.py``), which shows what it refuses and
 what it changes silently (``compile``); then a short gravity run holds the joints at a pose
 with PD servos, on a fixed base or free on a floor (``gravity``). ``faults`` plants the
 mistakes the run must catch.
@@ -17,11 +17,11 @@ from typing import Any
 from descgen.codes.simulate import SIM009, SIM014, SIM015, SIM016, SIM017
 from descgen.commands.simulate import gravity
 from descgen.commands.simulate.compile import compile_robot, silent_changes
-from descgen.commands.simulate.mujoco_urdf import emit
 from descgen.core.findings import Finding, InputError, Where
-from descgen.core.model import MULTI_DOF, Robot
+from descgen.core.model import Robot
 from descgen.physics import start_state
 from descgen.physics.mimic import resolve
+from descgen.render.mujoco_urdf import emit
 
 BASES = ("fixed", "floor")
 MIN_SECONDS, MAX_SECONDS = 0.01, 10.0
@@ -68,19 +68,6 @@ def require_mujoco() -> None:
                 )
             ]
         ) from None
-
-
-def default_base(robot: Robot) -> str:
-    """floor for a mobile robot (an SRDF virtual joint that is planar or floating, a root link
-    named base_footprint, or a drive controller: a wheeled base held in the air shows nothing
-    of how it stands), else fixed. A root named world is fixed by definition."""
-    root = robot.root()
-    if root is None or root == "world":
-        return "fixed"
-    virtual = robot.semantic.virtual_joints if robot.semantic else ()
-    if any(v.type in MULTI_DOF and v.child_link == root for v in virtual) or root == "base_footprint":
-        return "floor"
-    return "floor" if start_state.wheeled(robot) else "fixed"
 
 
 def pose_values(robot: Robot, name: str | None) -> dict[str, float]:
@@ -157,7 +144,7 @@ def simulate(robot: Robot, settings: Settings) -> Outcome:
     import mujoco
 
     started = time.perf_counter()
-    base = settings.base or default_base(robot)
+    base = settings.base or start_state.default_base(robot)
     root = robot.root()
     if base == "floor" and (root is None or root == "world"):
         base = "fixed"  # no single root to set free; reported in the report's "base"

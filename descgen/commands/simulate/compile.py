@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from descgen.codes.simulate import SIM001, SIM002, SIM003, SIM004, SIM005, SIM006, SIM007
-from descgen.commands.simulate.mujoco_urdf import Emitted
 from descgen.core.findings import Finding
 from descgen.core.model import WITH_LIMITS, Inertia, Inertial, Robot
+from descgen.render.mujoco_urdf import Emitted
 
 _ELEMENT = re.compile(r"Element name '([^']*)'")
 _STANDIN = Inertial(1.0, inertia=Inertia(1e-3, 0.0, 0.0, 1e-3, 0.0, 1e-3))

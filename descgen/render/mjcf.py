@@ -1,0 +1,216 @@
+"""The MJCF model ``hardware:=mujoco`` loads: mujoco_ros2_control's ``mujoco_model``
+(docs/mujoco_ros2_control.md: facts from the jazzy release 0.1.0, with their sources).
+
+MuJoCo compiles the robot from the same URDF ``simulate`` gives it (descgen/render/mujoco_urdf.py),
+and the compiled spec is written as MJCF, with what mujoco_ros2_control needs and the URDF cannot
+say: angles in radians; one actuator per ros2_control joint, named as the joint (the plugin finds a
+joint's actuator by that name), of the kind its first command interface needs (position ->
+``position``, velocity -> ``velocity``, effort -> ``motor``; the plugin refuses other pairs
+without PID gains), its force limited to the URDF's effort; a mimic joint as a joint equality
+with the URDF's multiplier and offset, and no actuator of its own; a mobile base (the simulate
+command's test) on a floor with a free joint named ``floating_base_joint``, whose odometry the
+plugin publishes; a time step no longer than the controller manager's period.
+
+Position and velocity gains are not in any description: ``kp`` gives the joint's full effort at a
+0.1 rad (or 1 cm) error, ``kv`` at a 1 rad/s (or 0.1 m/s) error. They are a starting point,
+written in the file's header with everything else the conversion changes (fixed links fused,
+visuals dropped), for a reviewer to tune.
+
+Meshes: a collision mesh must be an STL or OBJ file of the robot's own package; the MJCF names
+it relative to itself (``../meshes/...``). Another package's mesh, or a COLLADA file, is refused
+(GEN096): the plugin reads a plain path and nothing converts the file at launch.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from lxml import etree
+
+from descgen.codes.generate import GEN096
+from descgen.core.findings import Finding, InputError
+from descgen.core.model import Robot
+from descgen.meshes.paths import own_meshes
+from descgen.physics.start_state import default_base
+from descgen.render.mujoco_urdf import emit
+
+FOLDER = "mujoco"
+FREE_JOINT = "floating_base_joint"  # mujoco_ros2_control's odom_free_joint_name default
+FULL_EFFORT_AT = {"hinge": (0.1, 1.0), "slide": (0.01, 0.1)}  # (position error, velocity error)
+MAX_TIMESTEP = 0.002  # s, MuJoCo's default
+
+
+def path(robot: Robot) -> str:
+    """Where the model lies in the package."""
+    return f"{FOLDER}/{robot.name}.xml"
+
+
+def wanted(robot: Robot) -> bool:
+    """Whether the robot has a ``mujoco`` hardware variant."""
+    rc = robot.ros2_control
+    return rc is not None and any(v.name == "mujoco" for b in rc.hardware_blocks() for v in b.variants)
+
+
+@dataclass
+class Model:
+    text: str  # the MJCF, its header comment saying what the conversion changed
+    changes: list[str] = field(default_factory=list)
+
+
+def model(robot: Robot) -> Model:
+    """The MJCF of ``robot`` (module docstring); InputError (GEN096) when it cannot be made."""
+    import mujoco
+
+    emitted = emit(robot)
+    if emitted.findings:
+        raise InputError([_refused(robot, f.message) for f in emitted.findings])
+    spec = mujoco.MjSpec.from_string(emitted.text, assets=emitted.assets)
+    spec.compiler.degree = False
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    rc = robot.ros2_control
+    rate = rc.update_rate if rc is not None and rc.update_rate else None
+    spec.option.timestep = min(MAX_TIMESTEP, 1.0 / rate) if rate else MAX_TIMESTEP
+    changes: list[str] = []
+    root = robot.root()
+    if default_base(robot) == "floor" and root is not None:
+        spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05])
+        spec.body(root).add_freejoint(name=FREE_JOINT)
+        changes.append(f"a floor, and a free joint '{FREE_JOINT}' on the mobile base's root '{root}'")
+    elif root is not None:
+        welded = sorted(robot.body_of(root))
+        changes.append(
+            f"the fixed base {', '.join(welded)} welded to the world: its mass is the world's, not simulated"
+        )
+    changes += _actuators(robot, spec)
+    changes += _mimics(robot, spec)
+    try:
+        compiled = spec.compile()
+    except ValueError as exc:
+        raise InputError([_refused(robot, f"MuJoCo refuses the model: {' '.join(str(exc).split())}")]) from None
+    fused = _fused(robot, compiled)
+    if fused:
+        changes.append(f"{len(fused)} link(s) on fixed joints fused into their parent body: {', '.join(fused)}")
+    if any(lk.visuals for lk in robot.links):
+        changes.append("visuals dropped: MuJoCo's URDF import keeps the collision shapes only")
+    text = _with_mesh_paths(spec.to_xml(), robot, emitted.assets)
+    return Model(_with_header(text, changes), changes)
+
+
+def _actuators(robot: Robot, spec: Any) -> list[str]:
+    import mujoco
+
+    rc = robot.ros2_control
+    out: list[str] = []
+    if rc is None:
+        return out
+    gains: list[str] = []
+    for cj in rc.joints:
+        j = robot.joint(cj.name)
+        if j is None or j.mimic is not None or not cj.command:
+            continue  # a mimic joint follows its equality; a joint without commands is state only
+        kind = "slide" if j.type == "prismatic" else "hinge"
+        effort = j.limit.effort if j.limit is not None and j.limit.effort else None
+        a = spec.add_actuator()
+        a.name, a.target, a.trntype = cj.name, cj.name, mujoco.mjtTrn.mjTRN_JOINT
+        command = cj.command[0].name
+        position_error, velocity_error = FULL_EFFORT_AT[kind]
+        if command == "position":
+            kp = (effort or 1.0) / position_error
+            a.set_to_position(kp=kp)
+            gains.append(f"{cj.name} kp={kp:g}")
+        elif command == "velocity":
+            kv = (effort or 1.0) / velocity_error
+            a.set_to_velocity(kv=kv)
+            gains.append(f"{cj.name} kv={kv:g}")
+        else:
+            a.set_to_motor()
+        if effort:
+            a.forcelimited = True
+            a.forcerange = [-effort, effort]
+    if gains:
+        out.append(f"actuator gains, full effort at a 0.1 rad (1 cm) error or 1 rad/s (0.1 m/s): {', '.join(gains)}")
+    return out
+
+
+def _mimics(robot: Robot, spec: Any) -> list[str]:
+    import mujoco
+
+    out = []
+    # MuJoCo 4's URDF import already makes a joint equality of a <mimic>; an older one (Jazzy's
+    # mujoco_vendor is 3.4.0) may not: the file written holds one either way
+    made = {(e.name1, e.name2) for e in spec.equalities if e.type == mujoco.mjtEq.mjEQ_JOINT}
+    for j in robot.joints:
+        if j.mimic is None or robot.joint(j.mimic.joint) is None:
+            continue
+        out.append(f"{j.name} follows {j.mimic.joint} by a joint equality (the URDF's mimic)")
+        if (j.name, j.mimic.joint) in made:
+            continue
+        eq = spec.add_equality()
+        eq.type = mujoco.mjtEq.mjEQ_JOINT
+        eq.name1, eq.name2 = j.name, j.mimic.joint
+        # joint1 = polycoef(joint2): offset + multiplier * q2
+        eq.data[:5] = [j.mimic.offset, j.mimic.multiplier, 0.0, 0.0, 0.0]
+    return out
+
+
+def _fused(robot: Robot, compiled: Any) -> list[str]:
+    import mujoco
+
+    bodies = {mujoco.mj_id2name(compiled, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(compiled.nbody)}
+    return [lk.name for lk in robot.links if lk.name not in bodies]
+
+
+def _with_mesh_paths(text: str, robot: Robot, assets: dict[str, bytes]) -> str:
+    """The MJCF with each mesh named by its file in the package, relative to the MJCF."""
+    if not assets:
+        return text
+    root = etree.fromstring(text.encode("utf-8"))
+    by_source = {str(source): rel for rel, source in own_meshes(robot).items()}
+    for mesh in root.iter("mesh"):
+        file = mesh.get("file", "")
+        rel = _package_path(file, robot, assets, by_source)
+        if rel is None:
+            raise InputError([_refused(robot, f"mesh {file!r} is not an STL or OBJ file of this package")])
+        mesh.set("file", f"../{rel}")
+    return etree.tostring(root, encoding="unicode")
+
+
+def _package_path(neutral: str, robot: Robot, assets: dict[str, bytes], by_source: dict[str, str]) -> str | None:
+    """The package path of the file ``emit`` handed MuJoCo as ``neutral`` (render/mujoco_urdf.py
+    names each file once, in order; its bytes are the file's)."""
+    data = assets.get(neutral)
+    if data is None:
+        return None
+    for source, rel in by_source.items():
+        if rel.lower().endswith((".stl", ".obj")) and _same(source, data):
+            return rel
+    return None
+
+
+def _same(source: str, data: bytes) -> bool:
+    try:
+        with open(source, "rb") as f:
+            return f.read() == data
+    except OSError:
+        return False
+
+
+def _with_header(text: str, changes: list[str]) -> str:
+    lines = ["What descgen's conversion from the URDF changed or added (descgen/render/mjcf.py):"]
+    lines += [f"- {c}" for c in changes] or ["- nothing"]
+    comment = "\n".join(lines).replace("--", "- -")
+    head, sep, rest = text.partition("\n")
+    if head.startswith("<mujoco"):
+        return f"<!--\n{comment}\n-->\n{text}"
+    return f"{head}{sep}<!--\n{comment}\n-->\n{rest}"
+
+
+def _refused(robot: Robot, why: str) -> Finding:
+    return GEN096.finding(
+        f"hardware:=mujoco: {why}",
+        "mujoco_ros2_control reads the MJCF file as it is: give STL or OBJ collision meshes of this package, and a "
+        "model MuJoCo compiles (descgen simulate SPEC shows why it does not)",
+        f"robot:{robot.name}",
+        robot.where,
+    )
