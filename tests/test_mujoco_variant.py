@@ -81,8 +81,10 @@ def test_mujoco_compiles_the_file_and_it_is_the_urdfs_robot(package: Path) -> No
     assert set(actuators) == set(commanded)
     for name, command in commanded.items():
         a = actuators[name]
+        # as the plugin classifies an actuator (sif.cpp:128): a position bias, else a velocity one, else a motor
         bias = model.actuator_biasprm[a]
-        assert (bias[1] < 0) == (command == "position") and (bias[2] < 0) == (command == "velocity"), name
+        kind = "position" if bias[1] != 0 else "velocity" if bias[2] != 0 else "effort"
+        assert kind == command, name
     # a wheeled base: on a floor, free, with the joint mujoco_ros2_control publishes odometry for
     assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "floating_base_joint") >= 0
 
@@ -179,3 +181,106 @@ def test_another_plugin_or_model_is_refused(tmp_path: Path, variant: str) -> Non
     spec.write_text(_with_mujoco(spec.read_text(), variant))
     r = cli("validate", spec)
     assert r.returncode == 2 and "error[SPEC149]" in r.stderr, r.stderr[-2000:]
+
+
+# -- what the review of the variant found --------------------------------------------------------------
+
+
+def test_the_file_is_installed_and_its_plugin_a_dependency(package: Path) -> None:
+    cmake = (package / "CMakeLists.txt").read_text()
+    installed = next(line for line in cmake.splitlines() if line.strip().startswith("DIRECTORY"))
+    assert "mujoco" in installed.split()
+    deps = [e.text for e in etree.parse(str(package / "package.xml")).getroot().findall("exec_depend")]
+    assert "mujoco_ros2_control" in deps
+
+
+def test_jazzys_mujoco_reads_it_too(package: Path) -> None:
+    """mujoco_vendor 3.4.0 refuses the ``input`` attribute MuJoCo 4 writes on a general actuator."""
+    assert " input=" not in (package / "mujoco" / "warehouse_arm.xml").read_text()
+
+
+def test_the_arm_settles_holding_its_start_pose(package: Path) -> None:
+    model = mujoco.MjModel.from_xml_path(str(package / "mujoco" / "warehouse_arm.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    # the free base stands on the floor: no shape below it at the start
+    lowest = min(
+        float(
+            (
+                data.geom_xpos[g]
+                + data.geom_xmat[g].reshape(3, 3) @ (model.geom_aabb[g][:3] + model.geom_aabb[g][3:] * s)
+            )[2]
+        )
+        for g in range(model.ngeom)
+        if model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE
+        for s in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).T.reshape(-1, 3)
+    )
+    assert 0.0 <= lowest < 0.01
+    arm = ["lift_joint", "shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint"]
+    for _ in range(int(3.0 / model.opt.timestep)):  # hold every position actuator at zero for 3 s
+        mujoco.mj_step(model, data)
+    speeds = [abs(data.qvel[model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, j)]]) for j in arm]
+    assert max(speeds) < 0.01  # JTC's stopped_velocity_tolerance
+
+
+def test_each_commanded_joint_gets_the_actuator_its_commands_need(tmp_path: Path) -> None:
+    """The plugin refuses position on a velocity or effort actuator without PIDs: position wins."""
+    text = GRIPPER.replace("{name: jaw_a, command: [position]", "{name: jaw_a, command: [effort, velocity, position]")
+    spec = tmp_path / "specs" / "jaw.yaml"
+    spec.parent.mkdir()
+    spec.write_text(text)
+    assert cli("generate", spec).returncode == 0
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "generated" / "jaw_description" / "mujoco" / "jaw.xml"))
+    assert model.actuator_biasprm[0][1] != 0  # a position actuator
+
+
+def test_a_link_without_inertial_adds_no_mass(tmp_path: Path) -> None:
+    text = GRIPPER.replace(
+        "joints:\n",
+        "  - name: flange\njoints:\n  - {name: flange_joint, type: fixed, parent: base_link, child: flange}\n",
+        1,
+    )
+    spec = tmp_path / "specs" / "jaw.yaml"
+    spec.parent.mkdir()
+    spec.write_text(text)
+    r = cli("generate", spec)
+    assert r.returncode == 0, r.stderr[-2000:]
+
+
+def test_the_proof_sees_kinematics_gear_and_forces(package: Path) -> None:
+    from descgen.audit.spec import load_spec
+    from descgen.prove.mujoco_model import mujoco_model
+
+    robot = load_spec(package.parent.parent / "specs" / "warehouse_arm.yaml").robot
+    text = (package / "mujoco" / "warehouse_arm.xml").read_text()
+    elbow = text.index('name="elbow_joint"')
+    flipped = text[:elbow] + text[elbow:].replace('axis="0 1 0"', 'axis="0 -1 0"', 1)
+    assert flipped != text
+    moved = text.replace('<body name="forearm_link" pos="0.3 0 0"', '<body name="forearm_link" pos="1.3 0 0"')
+    assert moved != text
+    geared = text.replace('<general name="elbow_joint"', '<general name="elbow_joint" gear="50"')
+    for wrong, needle in ((flipped, "'elbow_joint' axis"), (moved, "body 'forearm_link' is not where"),
+                          (geared, "gear of 50")):  # fmt: skip
+        found = mujoco_model({"mujoco/warehouse_arm.xml": wrong}, robot, package)
+        assert any(needle in f.message for f in found), (needle, [f.message for f in found])
+
+
+def test_one_block_only(tmp_path: Path) -> None:
+    block = "  blocks:\n    - name: Other\n      hardware:\n        plugin: mock_components/GenericSystem\n"
+    text = GRIPPER.replace("  controllers:", block + "        variants: {mujoco: {}}\n  controllers:")
+    spec = tmp_path / "specs" / "jaw.yaml"
+    spec.parent.mkdir()
+    spec.write_text(text)
+    r = cli("validate", spec)
+    assert r.returncode == 2 and "error[SPEC149]" in r.stderr and "blocks" in r.stderr, r.stderr[-2000:]
+
+
+def test_without_mujoco_installed_generate_says_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    spec = tmp_path / "specs" / "jaw.yaml"
+    spec.parent.mkdir()
+    spec.write_text(GRIPPER)
+    monkeypatch.setitem(sys.modules, "mujoco", None)  # import mujoco raises ImportError
+    r = cli("generate", spec)
+    assert r.returncode == 2 and "error[GEN096]" in r.stderr and "not installed" in r.stderr, r.stderr[-2000:]

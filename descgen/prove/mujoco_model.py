@@ -81,6 +81,12 @@ def differences(model: Any, robot: Robot) -> list[str]:
                 out.append(f"joint '{j.name}' range {got} in the MJCF, {want} in the URDF")
     out += _actuators(model, robot, jid)
     out += _equalities(model, robot, jid)
+    out += _kinematics(model, robot)
+    rc = robot.ros2_control
+    if rc is not None and rc.update_rate and model.opt.timestep > 1.0 / rc.update_rate * (1 + TOLERANCE):
+        out.append(f"time step {model.opt.timestep:g} s, longer than the controller manager's period")
+    if not all(_close(float(g), w) for g, w in zip(model.opt.gravity, (0.0, 0.0, -9.81), strict=True)):
+        out.append(f"gravity {tuple(float(g) for g in model.opt.gravity)}, not (0, 0, -9.81)")
     mass = sum(lk.inertial.mass or 0.0 for lk in robot.links if lk.inertial is not None)
     root = robot.root()
     if default_base(robot) != "floor" and root is not None:  # welded to the world: its mass is the world's
@@ -102,7 +108,7 @@ def _actuators(model: Any, robot: Robot, jid: Any) -> list[str]:
     for cj in rc.joints if rc is not None else ():
         j = robot.joint(cj.name)
         if j is not None and j.mimic is None and cj.command:
-            wanted[cj.name] = cj.command[0].name
+            wanted[cj.name] = mjcf.actuator_kind(cj)
     names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, a): a for a in range(model.nu)}
     for name in sorted(set(names) - set(wanted)):
         out.append(f"actuator '{name}' drives no commanded ros2_control joint")
@@ -113,10 +119,18 @@ def _actuators(model: Any, robot: Robot, jid: Any) -> list[str]:
             continue
         if model.actuator_trntype[a] != mujoco.mjtTrn.mjTRN_JOINT or model.actuator_trnid[a][0] != jid(name):
             out.append(f"actuator '{name}' does not drive joint '{name}'")
+        # as the plugin classifies an actuator (sif.cpp:128): a position bias, else a velocity one
         bias = model.actuator_biasprm[a]
-        kind = "position" if bias[1] < 0 else "velocity" if bias[2] < 0 else "effort"
+        kind = "position" if bias[1] != 0 else "velocity" if bias[2] != 0 else "effort"
         if kind != command:
-            out.append(f"actuator '{name}' is a {kind} actuator; the joint's first command is {command}")
+            out.append(f"actuator '{name}' is a {kind} actuator; the joint's most demanding command is {command}")
+        if not _close(float(model.actuator_gear[a][0]), 1.0):
+            out.append(f"actuator '{name}' has a gear of {float(model.actuator_gear[a][0]):g}, not 1")
+        j = robot.joint(name)
+        effort = j.limit.effort if j is not None and j.limit is not None and j.limit.effort else None
+        low, high = (float(x) for x in model.actuator_forcerange[a])
+        if effort and not (model.actuator_forcelimited[a] and _close(low, -effort) and _close(high, effort)):
+            out.append(f"actuator '{name}' force range [{low:g}, {high:g}], the URDF's effort {effort:g}")
     return out
 
 
@@ -137,6 +151,46 @@ def _equalities(model: Any, robot: Robot, jid: Any) -> list[str]:
             out.append(f"mimic joint '{j.name}' has no joint equality with '{j.mimic.joint}'")
         elif not (_close(float(data[0]), j.mimic.offset) and _close(float(data[1]), j.mimic.multiplier)):
             out.append(f"mimic joint '{j.name}': the equality's offset and multiplier are not the URDF's")
+    return out
+
+
+def _kinematics(model: Any, robot: Robot) -> list[str]:
+    """Every MJCF body where the robot puts its link (relative to the root, joints at zero), with
+    the mass of the links fused into it, and every joint axis as the URDF gives it."""
+    import mujoco
+    import numpy as np
+
+    from descgen.physics.kinematics import forward
+
+    out: list[str] = []
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    root = robot.root()
+    poses = forward(robot)
+    base = np.eye(4)
+    rid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, root) if root else -1
+    if rid >= 0:
+        base[:3, :3], base[:3, 3] = data.xmat[rid].reshape(3, 3), data.xpos[rid]
+    inv = np.linalg.inv(base)
+    for b in range(1, model.nbody):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b)
+        if name not in poses:
+            continue
+        pose = np.eye(4)
+        pose[:3, :3], pose[:3, 3] = data.xmat[b].reshape(3, 3), data.xpos[b]
+        got = inv @ pose
+        if not np.allclose(got, poses[name], atol=TOLERANCE * 10):
+            out.append(f"body '{name}' is not where the URDF puts link '{name}' (joints at zero)")
+        fused = sum(_mass(robot, lk) for lk in robot.body_of(name))
+        if not _close(float(model.body_mass[b]), fused):
+            out.append(f"body '{name}' weighs {float(model.body_mass[b]):g} kg, its links {fused:g} kg")
+    for j in robot.joints:
+        i = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, j.name)
+        if i < 0 or j.axis is None or j.type not in KINDS:
+            continue
+        want = np.array(j.axis, dtype=float) / np.linalg.norm(j.axis)
+        if not np.allclose(model.jnt_axis[i], want, atol=TOLERANCE * 10):
+            out.append(f"joint '{j.name}' axis {tuple(float(x) for x in model.jnt_axis[i])}, the URDF's {tuple(want)}")
     return out
 
 

@@ -177,6 +177,7 @@ def install_dirs(robot: Robot) -> list[str]:
     ``meshes`` when the robot has meshes of its own. ``evidence`` is for reviewers of the
     source tree, not for a robot at run time, so it is not installed."""
     folders = {path.split("/")[0] for path, _, _ in outputs(robot) if "/" in path} - {"evidence"}
+    folders |= {mjcf.FOLDER} if mjcf.wanted(robot) else set()  # hardware:=mujoco's model, found by $(find)
     return sorted(folders | ({MESH_FOLDER} if own_meshes(robot) else set()))
 
 

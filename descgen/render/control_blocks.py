@@ -83,4 +83,6 @@ def control_depends(rc: Ros2Control) -> list[str]:
         out.append("hardware_interface")
     if any(p.startswith("gz_ros2_control/") for p in plugins):
         out.append("gz_ros2_control")
+    if any(p.startswith("mujoco_ros2_control/") for p in plugins):
+        out.append("mujoco_ros2_control")  # its plugin and the ros2_control_node control.launch.py starts
     return out

@@ -30,8 +30,8 @@ from lxml import etree
 
 from descgen.codes.generate import GEN096
 from descgen.core.findings import Finding, InputError
-from descgen.core.model import Robot
-from descgen.meshes.paths import own_meshes
+from descgen.core.model import ControlJoint, Mesh, Robot
+from descgen.meshes.paths import own_meshes, package_name
 from descgen.physics.start_state import default_base
 from descgen.render.mujoco_urdf import emit
 
@@ -58,15 +58,31 @@ class Model:
     changes: list[str] = field(default_factory=list)
 
 
+MIN_MUJOCO = (4, 0)  # 3.x's URDF import loses <frame> offsets of fused links (checked against 3.4.0)
+CLEARANCE = 0.001  # m between a mobile base's lowest shape and the floor at the start
+
+
 def model(robot: Robot) -> Model:
     """The MJCF of ``robot`` (module docstring); InputError (GEN096) when it cannot be made."""
-    import mujoco
-
+    try:
+        import mujoco
+    except ImportError:
+        raise InputError(
+            [_refused(robot, "the mujoco package is not installed (pip install 'descgen[sim]')")]
+        ) from None
+    version = tuple(int(x) for x in mujoco.__version__.split(".")[:2])
+    if version < MIN_MUJOCO:
+        need = ".".join(map(str, MIN_MUJOCO))
+        why = f"MuJoCo {mujoco.__version__} is installed; writing the model needs {need} or newer"
+        raise InputError([_refused(robot, why)])
     emitted = emit(robot)
     if emitted.findings:
         raise InputError([_refused(robot, f.message) for f in emitted.findings])
     spec = mujoco.MjSpec.from_string(emitted.text, assets=emitted.assets)
     spec.compiler.degree = False
+    # a link with no <inertial> adds no mass, as in the URDF (MuJoCo's default would give it the
+    # mass of its shapes at 1000 kg/m^3)
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     rc = robot.ros2_control
     rate = rc.update_rate if rc is not None and rc.update_rate else None
@@ -86,6 +102,11 @@ def model(robot: Robot) -> Model:
     changes += _mimics(robot, spec)
     try:
         compiled = spec.compile()
+        if default_base(robot) == "floor" and root is not None:
+            lift = _on_the_floor(compiled)
+            spec.body(root).pos[2] += lift
+            compiled = spec.compile()
+            changes.append(f"the mobile base starts {lift:.4g} m up, its lowest shape {CLEARANCE} m above the floor")
     except ValueError as exc:
         raise InputError([_refused(robot, f"MuJoCo refuses the model: {' '.join(str(exc).split())}")]) from None
     fused = _fused(robot, compiled)
@@ -93,8 +114,43 @@ def model(robot: Robot) -> Model:
         changes.append(f"{len(fused)} link(s) on fixed joints fused into their parent body: {', '.join(fused)}")
     if any(lk.visuals for lk in robot.links):
         changes.append("visuals dropped: MuJoCo's URDF import keeps the collision shapes only")
-    text = _with_mesh_paths(spec.to_xml(), robot, emitted.assets)
+    text = _with_mesh_paths(_plain(spec.to_xml()), robot, emitted.assets)
     return Model(_with_header(text, changes), changes)
+
+
+def _plain(text: str) -> str:
+    """MJCF that Jazzy's MuJoCo (mujoco_vendor 3.4.0) also reads: MuJoCo 4 writes ``input`` on a
+    general actuator, which 3.4 refuses ("unrecognized attribute") and which gainprm and biasprm
+    already say."""
+    root = etree.fromstring(text.encode("utf-8"))
+    for general in root.iter("general"):
+        if "input" in general.attrib:
+            del general.attrib["input"]
+    return etree.tostring(root, encoding="unicode") + "\n"
+
+
+def _on_the_floor(compiled: Any) -> float:
+    """How far up the free base must start for its lowest shape to clear the floor."""
+    import mujoco
+
+    data = mujoco.MjData(compiled)
+    mujoco.mj_forward(compiled, data)
+    lowest = 0.0
+    first = True
+    for g in range(compiled.ngeom):
+        if compiled.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE:
+            continue
+        centre, half = compiled.geom_aabb[g][:3], compiled.geom_aabb[g][3:]
+        corners = [
+            data.geom_xpos[g] + data.geom_xmat[g].reshape(3, 3) @ (centre + half * [sx, sy, sz])
+            for sx in (-1, 1)
+            for sy in (-1, 1)
+            for sz in (-1, 1)
+        ]
+        low = min(float(c[2]) for c in corners)
+        lowest = low if first else min(lowest, low)
+        first = False
+    return CLEARANCE - lowest
 
 
 def _actuators(robot: Robot, spec: Any) -> list[str]:
@@ -113,11 +169,11 @@ def _actuators(robot: Robot, spec: Any) -> list[str]:
         effort = j.limit.effort if j.limit is not None and j.limit.effort else None
         a = spec.add_actuator()
         a.name, a.target, a.trntype = cj.name, cj.name, mujoco.mjtTrn.mjTRN_JOINT
-        command = cj.command[0].name
+        command = actuator_kind(cj)
         position_error, velocity_error = FULL_EFFORT_AT[kind]
         if command == "position":
             kp = (effort or 1.0) / position_error
-            a.set_to_position(kp=kp)
+            a.set_to_position(kp=kp, dampratio=1.0)  # critically damped: the joint settles at its target
             gains.append(f"{cj.name} kp={kp:g}")
         elif command == "velocity":
             kv = (effort or 1.0) / velocity_error
@@ -131,6 +187,14 @@ def _actuators(robot: Robot, spec: Any) -> list[str]:
     if gains:
         out.append(f"actuator gains, full effort at a 0.1 rad (1 cm) error or 1 rad/s (0.1 m/s): {', '.join(gains)}")
     return out
+
+
+def actuator_kind(cj: ControlJoint) -> str:
+    """The actuator a commanded joint gets. The plugin sets up every command interface of a joint
+    and refuses position on a velocity or effort actuator, and velocity on an effort one, without
+    PID gains: the actuator is the most demanding kind the joint is commanded in."""
+    commands = {i.name for i in cj.command}
+    return "position" if "position" in commands else "velocity" if "velocity" in commands else "effort"
 
 
 def _mimics(robot: Robot, spec: Any) -> list[str]:
@@ -167,11 +231,17 @@ def _with_mesh_paths(text: str, robot: Robot, assets: dict[str, bytes]) -> str:
         return text
     root = etree.fromstring(text.encode("utf-8"))
     by_source = {str(source): rel for rel, source in own_meshes(robot).items()}
+    own = f"package://{package_name(robot)}/"
     for mesh in root.iter("mesh"):
         file = mesh.get("file", "")
         rel = _package_path(file, robot, assets, by_source)
         if rel is None:
-            raise InputError([_refused(robot, f"mesh {file!r} is not an STL or OBJ file of this package")])
+            meshes = sorted(
+                {c.geometry.filename for lk in robot.links for c in lk.collisions if isinstance(c.geometry, Mesh)}
+            )
+            theirs = [m for m in meshes if not m.lower().endswith((".stl", ".obj")) or not m.startswith(own)]
+            why = f"collision mesh(es) {', '.join(theirs) or ', '.join(meshes)} not STL or OBJ files of this package"
+            raise InputError([_refused(robot, why)])
         mesh.set("file", f"../{rel}")
     return etree.tostring(root, encoding="unicode")
 
@@ -199,7 +269,9 @@ def _same(source: str, data: bytes) -> bool:
 def _with_header(text: str, changes: list[str]) -> str:
     lines = ["What descgen's conversion from the URDF changed or added (descgen/render/mjcf.py):"]
     lines += [f"- {c}" for c in changes] or ["- nothing"]
-    comment = "\n".join(lines).replace("--", "- -")
+    comment = "\n".join(lines)
+    while "--" in comment:  # an XML comment may not hold "--" (a name may)
+        comment = comment.replace("--", "- -")
     head, sep, rest = text.partition("\n")
     if head.startswith("<mujoco"):
         return f"<!--\n{comment}\n-->\n{text}"

@@ -18,6 +18,7 @@ from descgen.codes.spec import (
     SPEC089,
     SPEC146,
     SPEC147,
+    SPEC149,
 )
 from descgen.core import model as m
 from descgen.core import units
@@ -69,6 +70,16 @@ def ros2_control(conv: Converter, rc: s.Ros2ControlSpec, links: Collection[str] 
         _unique_components(conv, block, path)
         _sensor_block_commands(conv, block, path)
     _blocks_agree(conv, specs, hardware)
+    if len(specs) > 1 and any(v.name == "mujoco" for v in hardware[0].variants):
+        # each MujocoSystemInterface loads the whole model and runs its own physics and /clock
+        conv.error(
+            SPEC149,
+            f"the mujoco variant with {len(specs)} <ros2_control> blocks: each block's MujocoSystemInterface would "
+            "run its own simulation of the whole model",
+            "put every joint of the robot in one block for hardware:=mujoco",
+            "ros2_control",
+            conv.where((*base, "hardware", "variants", "mujoco")),
+        )
     controllers = []
     for i, c in enumerate(rc.controllers):
         p = (*base, "controllers", i)
