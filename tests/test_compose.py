@@ -151,6 +151,8 @@ def test_the_evidence_page_lists_the_composition(cell: Path) -> None:
          "root is the global frame 'world'"),
         (("spec: warehouse_arm.yaml\n    prefix: right_", "spec: prefixed_arm.yaml\n    prefix: right_"), "SPEC144",
          "has its own prefix: 'p_'"),
+        (("spec: warehouse_arm.yaml", "spec: mujoco_arm.yaml"), "SPEC144",  # both copies have it
+         "both robots have a mujoco hardware variant"),
     ],
 )  # fmt: skip
 def test_a_composition_that_cannot_work_is_refused(
@@ -165,6 +167,8 @@ def test_a_composition_that_cannot_work_is_refused(
         "joints:\n", "joints:\n  - {name: world_joint, type: fixed, parent: world, child: base_footprint}\n", 1
     )
     (spec.parent / "world_arm.yaml").write_text(world)
+    anchor = "        params: {device: /dev/ttyACM0, baud_rate: 115200}\n"
+    (spec.parent / "mujoco_arm.yaml").write_text(arm.replace(anchor, anchor + "      mujoco: {}\n", 1))
     (spec.parent / "prefixed_arm.yaml").write_text(
         arm.replace("\nname: warehouse_arm\n", "\nname: warehouse_arm\nprefix: p_\n", 1)
     )

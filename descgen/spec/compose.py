@@ -258,6 +258,16 @@ def _control(host: m.Robot, p: m.Robot, prefix: str, where: Where) -> tuple[m.Ro
                 where,
             )
         )
+    if "mujoco" in va:  # each block's MujocoSystemInterface would run its own simulation (SPEC149's rule)
+        problems.append(
+            SPEC144.finding(
+                "both robots have a mujoco hardware variant: composed, their two <ros2_control> blocks would each run "
+                "a simulation of the whole model",
+                "compose robots without the mujoco variant, and give the composing spec none",
+                f"compose:{prefix}",
+                where,
+            )
+        )
     names = {c.name for c in a.controllers}
     for c in b.controllers:
         if c.name in names:
