@@ -184,3 +184,41 @@ def test_a_composed_spec_change_makes_the_cell_stale(cell: Path, tmp_path: Path)
     arm.write_text(arm.read_text().replace("WA-1 warehouse mobile manipulator", "WA-2 warehouse mobile manipulator"))
     r = cli("check", root / "specs" / "cell.yaml")
     assert r.returncode == 1 and "GEN005" in r.stderr
+
+
+ARM = """\
+name: tiny_arm
+links:
+  - name: base_link
+    collision: [{geometry: {box: {size: [100 mm, 100 mm, 100 mm]}}}]
+    inertial: {mass: 1 kg, from: collision}
+  - name: arm_link
+    collision: [{geometry: {box: {size: [50 mm, 50 mm, 300 mm]}}}]
+    inertial: {mass: 500 g, from: collision}
+joints:
+  - name: arm_joint
+    type: revolute
+    parent: base_link
+    child: arm_link
+    origin: {xyz: [0, 0, 100 mm]}
+    axis: [1, 1, 0]
+    limit: {lower: -90 deg, upper: 90 deg, effort: 10 N*m, velocity: 1 rad/s}
+waivers:
+  - {code: SRDF003, subject: "disable_collisions:base_link:arm_link", reason: a two-name subject}
+"""
+
+
+def test_copies_side_by_side_are_no_mirrored_limbs_and_keep_their_waivers(tmp_path: Path) -> None:
+    """left_arm_joint and right_arm_joint read as a mirrored pair (JOINT009) unless the rule knows
+    they are two mounted copies; a waiver's every name goes behind the prefix."""
+    (tmp_path / "specs").mkdir()
+    (tmp_path / "specs" / "tiny_arm.yaml").write_text(ARM)
+    cell = CELL.replace("warehouse_arm.yaml", "tiny_arm.yaml")
+    (tmp_path / "specs" / "cell.yaml").write_text(cell)
+    r = cli("validate", tmp_path / "specs" / "cell.yaml")
+    assert "JOINT009" not in r.stderr, r.stderr[-2000:]
+    from descgen.audit.spec import load_spec
+
+    robot = load_spec(tmp_path / "specs" / "cell.yaml", rules=False).robot
+    subjects = {w.subject for w in robot.waivers}
+    assert subjects == {f"disable_collisions:{p}base_link:{p}arm_link" for p in ("left_", "right_")}

@@ -238,3 +238,50 @@ def test_what_the_review_found_is_right(package: Path, monkeypatch: pytest.Monke
         .encode()
     )
     assert {e.get("name") for e in alone.iter("joint")} >= {"r_lift_joint", "r_elbow_joint"}
+
+
+def test_a_prefix_that_the_pass_would_not_give_back_is_imported_name_for_name(tmp_path: Path) -> None:
+    """A controller frame id without the Xacro's prefix: the prefix pass would write it prefixed,
+    so the spec keeps every name as the description has it (no prefix:), proven."""
+    rules = ROOT / "tests" / "rules" / "NAME014"
+    ctl = tmp_path / "c.yaml"
+    ctl.write_text(
+        (rules / "good.controllers.yaml").read_text().replace("odom_frame_id: left_odom", "odom_frame_id: odom")
+    )
+    spec = tmp_path / "specs" / "cart.yaml"
+    r = cli("import", rules / "good.xacro", "--controllers", ctl, "-o", spec)
+    assert r.returncode == 0 and "round trip proven" in r.stdout + r.stderr, r.stderr[-2000:]
+    text = spec.read_text()
+    assert "\nprefix:" not in text and "left_base_link" in text
+
+
+def test_the_ur_drivers_real_hardware_keeps_its_tf_prefix(tmp_path: Path) -> None:
+    """ur_robot_driver's real hardware has <param name="tf_prefix">: written empty in the spec, it
+    takes the spec's prefix back (the import's round trip proves it)."""
+    spec = tmp_path / "specs" / "ur.yaml"
+    args = {**UR_ARGS, "use_mock_hardware": "false", "tf_prefix": "left_"}
+    r = cli(
+        "import", CORPUS / "ur_robot_driver" / "urdf" / "ur.urdf.xacro",
+        *[x for k, v in args.items() for x in ("--xacro-arg", f"{k}:={v}")], "--package-path", CORPUS,
+        "--controllers", CORPUS / "ur_robot_driver" / "config" / "ur_controllers.yaml",
+        "--launch-arg", "tf_prefix:=left_", "-o", spec,
+    )  # fmt: skip
+    assert r.returncode == 0 and "round trip proven" in r.stdout + r.stderr, r.stderr[-3000:]
+    assert "\nprefix: left_\n" in spec.read_text()
+
+
+def test_frame_leaves_and_interface_names_in_controller_params() -> None:
+    """pose_broadcaster's tf.child_frame_id is a frame (prefixed); an interface named like a link
+    is an interface (not prefixed)."""
+    from descgen.core.findings import Where
+    from descgen.core.model import Controller, Link, Robot, Ros2Control
+    from descgen.spec.prefix import prefixed
+
+    pose = Controller("pose", "pose_broadcaster/PoseBroadcaster", (("tf", (("child_frame_id", "tool_measured"),)),))
+    gpio = Controller("io", "gpio_controllers/GpioCommandController", (("interfaces", ("caster_link",)),))
+    robot = Robot("r", links=(Link("caster_link"),), ros2_control=Ros2Control("hw", controllers=(pose, gpio)))
+    rc = prefixed(robot, "left_", Where("x")).ros2_control
+    assert rc is not None
+    got = {c.name: dict(c.params) for c in rc.controllers}
+    assert got["pose"]["tf"] == (("child_frame_id", "left_tool_measured"),)
+    assert got["io"]["interfaces"] == ("caster_link",)

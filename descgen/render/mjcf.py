@@ -161,6 +161,7 @@ def _actuators(robot: Robot, spec: Any) -> list[str]:
     if rc is None:
         return out
     gains: list[str] = []
+    unlimited: list[str] = []
     for cj in rc.joints:
         j = robot.joint(cj.name)
         if j is None or j.mimic is not None or not cj.command:
@@ -184,6 +185,13 @@ def _actuators(robot: Robot, spec: Any) -> list[str]:
         if effort:
             a.forcelimited = True
             a.forcerange = [-effort, effort]
+        else:
+            unlimited.append(cj.name)
+    if unlimited:
+        out.append(
+            f"no effort limit in the URDF for {', '.join(unlimited)}: gains from 1 N*m (or N), no force limit; "
+            "too weak to hold against gravity, most likely"
+        )
     if gains:
         out.append(f"actuator gains, full effort at a 0.1 rad (1 cm) error or 1 rad/s (0.1 m/s): {', '.join(gains)}")
     return out

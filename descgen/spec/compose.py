@@ -7,7 +7,7 @@ its ``<ros2_control>`` block beside this robot's (one controller manager, so its
 names are prefixed too), its SRDF groups, states and end effectors (names prefixed; its
 virtual joints dropped, since its root is now fixed), its known poses (names prefixed, frames
 measured from its own root), calibration and waivers (subjects prefixed). Its own meshes are
-copied into this robot's package, under ``meshes/<robot>/``.
+copied into this robot's package, under ``meshes/<prefix>/`` (one folder per mount).
 
 What cannot be merged is refused (SPEC144): pass-through XML (its names are text descgen does
 not rewrite), hardware variants that differ (one ``hardware:=`` selects every block), and two
@@ -92,7 +92,7 @@ def mounted(
         source=source,
         description=f"{sub.name} mounted on {parent}",
     )
-    p = _meshes_moved(p, sub, host)
+    p = _meshes_moved(p, sub, host, prefix)
     materials = {mt.name: replace(mt, name=prefix + mt.name) for mt in p.materials}
     links = tuple(
         replace(
@@ -132,10 +132,11 @@ def mounted(
         joint_state_sources=host.joint_state_sources + p.joint_state_sources,
         mesh_status=host.mesh_status + p.mesh_status,
         mesh_files=host.mesh_files + p.mesh_files,
-        waivers=host.waivers + tuple(replace(w, subject=_subject(w.subject, prefix)) for w in sub.waivers),
-        calibration=host.calibration + p.calibration,
+        waivers=host.waivers + tuple(replace(w, subject=_subject(w.subject, prefix, host.name)) for w in sub.waivers),
+        # sources behind the prefix too: two robots' "tracker" are two measurements
+        calibration=host.calibration + tuple(replace(c, source=prefix + c.source) for c in p.calibration),
         calibration_sources=host.calibration_sources
-        + tuple(c for c in p.calibration_sources if c not in host.calibration_sources),
+        + tuple(replace(c, name=prefix + c.name) for c in p.calibration_sources),
         control_refusals=host.control_refusals + p.control_refusals,
         mounted=(*host.mounted, m.Mounted(sub.name, spec, prefix, parent, mount.name, where)),
     )
@@ -167,17 +168,23 @@ def _odometry_off(p: m.Robot, root: str, where: Where, prefix: str) -> tuple[m.R
     return replace(p, ros2_control=replace(rc, controllers=tuple(controllers))), notes
 
 
-def _subject(subject: str, prefix: str) -> str:
-    """A waiver's subject (``link:finger``) as the mounted robot's finding prints it."""
-    kind, sep, name = subject.partition(":")
-    return f"{kind}:{prefix}{name}" if sep and name else subject
+def _subject(subject: str, prefix: str, host: str) -> str:
+    """A waiver's subject (``link:finger``, ``disable_collisions:a:b``) as the composed robot's
+    finding prints it: every name behind the prefix, a ``robot:`` subject the composing robot's."""
+    kind, *names = subject.split(":")
+    if not names:
+        return subject
+    if kind == "robot":
+        return f"robot:{host}"
+    return ":".join([kind, *(n if not n or n in GLOBAL_FRAMES else prefix + n for n in names)])
 
 
-def _meshes_moved(p: m.Robot, sub: m.Robot, host: m.Robot) -> m.Robot:
+def _meshes_moved(p: m.Robot, sub: m.Robot, host: m.Robot, prefix: str) -> m.Robot:
     """The mounted robot's own meshes (``package://<its package>/meshes/...``) renamed into the
-    composing robot's package, under ``meshes/<robot>/``: that package is the one generated."""
+    composing robot's package, under ``meshes/<prefix>/`` (the prefix without its last _): that package is
+    the one generated, and two mounted robots of one name may have different files."""
     old = f"package://{package_name(sub)}/meshes/"
-    new = f"package://{package_name(host)}/meshes/{sub.name}/"
+    new = f"package://{package_name(host)}/meshes/{prefix.rstrip('_') or prefix}/"  # one folder per mount
 
     def moved(name: str) -> str:
         return new + name[len(old) :] if name.startswith(old) else name

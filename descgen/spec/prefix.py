@@ -26,6 +26,8 @@ from descgen.core.findings import Where
 from descgen.core.naming import GLOBAL_FRAMES
 from descgen.physics.control_claims import FRAME_PARAMS, default_frames, prefixes_tf_frames, split
 
+# the last name of a (nested) parameter that holds a frame id: pose_broadcaster's tf.child_frame_id
+FRAME_LEAVES = ("frame_id", "child_frame_id", "base_frame_id", "odom_frame_id")
 # controller parameters that hold the prefix itself (the UR controllers' tf_prefix): the spec
 # writes them empty, and they take the robot's prefix
 PREFIX_PARAMS = ("tf_prefix", "prefix")
@@ -109,10 +111,20 @@ def _control(rc: m.Ros2Control, p: Callable[[str], str], own: frozenset[str]) ->
     def params(items: tuple[tuple[str, str], ...], keys: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
         return tuple((k, p(v) if k in keys and v else v) for k, v in items)
 
+    def hardware(items: tuple[tuple[str, str], ...]) -> tuple[tuple[str, str], ...]:
+        # a hardware param holding the prefix itself (the UR driver's tf_prefix): written empty
+        return tuple((k, p("") if k in PREFIX_PARAMS and v == "" else v) for k, v in items)
+
+    def variants(vs: tuple[m.HardwareVariant, ...]) -> tuple[m.HardwareVariant, ...]:
+        return tuple(replace(v, params=hardware(v.params)) for v in vs)
+
     # block names are hardware component names, one controller manager's own (the UR description
     # does not prefix its block): left as written; compose, which puts blocks in one manager, does
     return replace(
         rc,
+        params=hardware(rc.params),
+        variants=variants(rc.variants),
+        blocks=tuple(replace(b, params=hardware(b.params), variants=variants(b.variants)) for b in rc.blocks),
         joints=tuple(replace(cj, name=p(cj.name)) for cj in rc.joints),
         sensors=tuple(
             replace(s, name=p(s.name), frame=p(s.frame) if s.frame else s.frame, params=params(s.params, ("frame_id",)))
@@ -138,12 +150,18 @@ def _controller(c: m.Controller, p: Callable[[str], str], own: frozenset[str]) -
         component, iface = split(v)
         return f"{p(component)}/{iface}" if component in own else v
 
-    def value(v: object) -> object:
+    def value(v: object, leaf: str = "") -> object:
         if isinstance(v, tuple) and v and all(isinstance(x, tuple) and len(x) == 2 for x in v):
-            return tuple((p(k) if k in own else k, value(x)) for k, x in v)  # a parameter namespace
+            # a parameter namespace (tf: {child_frame_id: ...}, constraints: {<joint>: ...})
+            return tuple((p(k) if k in own else k, frames(x) if k in FRAME_LEAVES else value(x, k)) for k, x in v)
+        if "interface" in leaf:  # interface names (a GPIO's may be spelled like a link): only full names
+            return type(v)(_full(x) for x in v) if isinstance(v, list | tuple) else _full(v)
         if isinstance(v, list | tuple):
             return type(v)(name(x) for x in v)
         return name(v)
+
+    def _full(v: object) -> object:
+        return name(v) if isinstance(v, str) and "/" in v else v
 
     def key(k: str) -> str:
         return ".".join(p(seg) if seg in own else seg for seg in k.split("."))
@@ -156,7 +174,8 @@ def _controller(c: m.Controller, p: Callable[[str], str], own: frozenset[str]) -
     def prefixed_value(k: str, v: object) -> object:
         if k in PREFIX_PARAMS and v == "":  # the robot's prefix, written empty in the spec
             return p("")
-        return frames(v) if k in FRAME_PARAMS else value(v)
+        leaf = k.rsplit(".", 1)[-1]
+        return frames(v) if k in FRAME_PARAMS or leaf in FRAME_LEAVES else value(v, leaf)
 
     params = tuple((key(k), prefixed_value(k, v)) for k, v in c.params)
     given = {k for k, _ in params}

@@ -251,6 +251,8 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
         if other is None or j.name in done or j.type not in ONE_DOF:
             continue
         done |= {j.name, other.name}
+        if _mounted(robot, j.name) != _mounted(robot, other.name):
+            continue  # copies of one robot composed side by side (compose:), not a mirrored limb
         if other.type != j.type or j.axis is None or other.axis is None or not j.child or not other.child:
             continue
         if j.child not in poses or other.child not in poses:
@@ -274,6 +276,11 @@ def mirror_axes_disagree(robot: Robot) -> Iterator[Finding]:
                 f"joints '{j.name}' and '{other.name}' mirror each other but their axes are {angle:.1f} deg apart",
                 f"check the axis of '{other.name}' (or of '{j.name}')",
             )
+
+
+def _mounted(robot: Robot, name: str) -> str | None:
+    """The prefix of the composed robot ``name`` belongs to (spec ``compose:``), or None."""
+    return next((mt.prefix for mt in robot.mounted if name.startswith(mt.prefix)), None)
 
 
 TRAVEL_FACTOR = 20.0  # a gantry rail may be several robots long; a mm-as-m slip is hundreds

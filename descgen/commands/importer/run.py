@@ -59,6 +59,7 @@ class ImportOptions:
     variants: tuple[variants.Variant, ...] = ()  # --variant: hardware variants of a Xacro
     waive: bool = True  # write a waiver for each defect of the description (IMP038); --no-waivers: not
     fix: bool = False  # --fix: the safe fixes of descgen/commands/fix.py applied to the spec first (IMP039)
+    take_prefix: bool = True  # a prefixed Xacro's prefix as the spec's prefix: (IMP041); False: name for name
 
 
 @dataclass(frozen=True)
@@ -338,8 +339,9 @@ def describe(opts: ImportOptions, path: Path, structured: bool = True, hv: Varia
     report += _not_imported(root, opts.description, shown, located, ctl.data is not None)
     structure = recognise(robot, writer) if structured else Structure()
     data_ = spec_data(robot, writer, kept, shown, structure, ctl.data)
-    data_, more = _prefixed(data_, path, opts.description, robot, root)
-    report += more
+    if opts.take_prefix:
+        data_, more = _prefixed(data_, path, opts.description, robot, root)
+        report += more
     folders, more = package_paths(robot, path, Path(opts.spec_name), opts.description.package_paths)
     report += more
     if folders:
@@ -381,7 +383,7 @@ def _prefixed(
     name = declared(path, str(path), options.xacro_args)
     if name is None:
         return data, []
-    names = prefix.names_behind(name.value, robot, root)
+    names = prefix.names_behind(name.value, robot, root, data)
     if names is None:
         return data, []  # some name lacks it: imported as it is (the audit's NAME014 names each)
     note = IMP041.finding(
@@ -628,12 +630,20 @@ def import_description(path: Path, opts: ImportOptions) -> Outcome:
     if opts.variants:
         opts, hv = expand_variants(path, opts)
     outcome = _proved(describe(opts, path, hv=hv))
+    if not outcome.proven and _prefix_taken_out(outcome):
+        # the prefix pass would not give the original back (a name it treats otherwise than the
+        # description does): imported name for name, as a description with a name off its prefix is
+        outcome = _proved(describe(dataclasses.replace(opts, take_prefix=False), path, hv=hv))
     if outcome.proven or not outcome.imported.structured:
         return _waived(outcome, opts)
     flat = _proved(describe(opts, path, structured=False, hv=hv))
     if not outcome.invalid:
         flat.imported.report.append(_unstructured(len(outcome.imported.differences), Where(opts.spec_name)))
     return _waived(flat, opts)
+
+
+def _prefix_taken_out(outcome: Outcome) -> bool:
+    return any(f.code == "IMP041" for f in outcome.imported.report)
 
 
 WAIVER_REASON = "imported as is"
