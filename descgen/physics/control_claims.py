@@ -50,6 +50,8 @@ FT_INTERFACES = ("force.x", "force.y", "force.z", "torque.x", "torque.y", "torqu
 JOINT_PARAMS = ("joints", "command_joints", "joint", "left_wheel_names", "right_wheel_names")
 # parameters that name a frame or a ros2_control sensor of the robot
 FRAME_PARAMS = ("base_frame_id", "odom_frame_id", "frame_id", "sensor_name")
+# the last name of a (nested) parameter that holds a frame id: pose_broadcaster's tf.child_frame_id
+FRAME_LEAVES = ("frame_id", "child_frame_id", "base_frame_id", "odom_frame_id")
 ODOMETRY_FRAMES = ("odom_frame_id", "base_frame_id")
 
 

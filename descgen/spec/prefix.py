@@ -24,10 +24,8 @@ from dataclasses import replace
 from descgen.core import model as m
 from descgen.core.findings import Where
 from descgen.core.naming import GLOBAL_FRAMES
-from descgen.physics.control_claims import FRAME_PARAMS, default_frames, prefixes_tf_frames, split
+from descgen.physics.control_claims import FRAME_LEAVES, FRAME_PARAMS, default_frames, prefixes_tf_frames, split
 
-# the last name of a (nested) parameter that holds a frame id: pose_broadcaster's tf.child_frame_id
-FRAME_LEAVES = ("frame_id", "child_frame_id", "base_frame_id", "odom_frame_id")
 # controller parameters that hold the prefix itself (the UR controllers' tf_prefix): the spec
 # writes them empty, and they take the robot's prefix
 PREFIX_PARAMS = ("tf_prefix", "prefix")

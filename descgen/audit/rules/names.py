@@ -11,7 +11,7 @@ from descgen.core.findings import Finding
 from descgen.core.launch_subst import unresolved
 from descgen.core.model import Joint, Link, Robot
 from descgen.core.naming import GLOBAL_FRAMES
-from descgen.physics.control_claims import FRAME_PARAMS, default_frames, joint_params, names
+from descgen.physics.control_claims import FRAME_LEAVES, FRAME_PARAMS, default_frames, joint_params, names
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
@@ -77,6 +77,17 @@ def unusable_name(robot: Robot) -> Iterator[Finding]:
             yield at("NAME003", elem, message, "use letters, digits and _, starting with a letter")
 
 
+def _leaves(params: tuple[tuple[str, object], ...], at: str = "") -> Iterator[tuple[str, object]]:
+    """Every parameter as (dotted name, value): a spec's nested namespaces (tf: {child_frame_id:})
+    and a controllers file's dotted names alike."""
+    for k, v in params:
+        name = f"{at}.{k}" if at else k
+        if isinstance(v, tuple) and v and all(isinstance(x, tuple) and len(x) == 2 for x in v):
+            yield from _leaves(v, name)
+        else:
+            yield name, v
+
+
 @rule("NAME014", "name-without-prefix", "error")
 def name_without_prefix(robot: Robot) -> Iterator[Finding]:
     """## What it does
@@ -122,8 +133,9 @@ def name_without_prefix(robot: Robot) -> Iterator[Finding]:
             if c.param(key) is None:  # unset: the controller publishes its default, unprefixed
                 unset = f"controller '{c.name}' {key} (unset, so its default)"
                 yield lacking(unset, default, c, f"controller:{c.name}")
-        for key in (*joint_params(c), *FRAME_PARAMS):
-            value = c.param(key)
+        nested = [k for k, _ in _leaves(c.params) if "." in k and k.rsplit(".", 1)[-1] in FRAME_LEAVES]
+        for key in dict.fromkeys((*joint_params(c), *FRAME_PARAMS, *nested)):
+            value = c.param(key) if "." not in key else dict(_leaves(c.params)).get(key)
             for i, name in enumerate(names(value)):
                 if not name.startswith(p.value) and name not in GLOBAL_FRAMES and not unresolved(name):
                     index = i if isinstance(value, tuple | list) else None

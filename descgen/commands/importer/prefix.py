@@ -15,8 +15,8 @@ from lxml import etree
 
 from descgen.core import model as m
 from descgen.core.naming import GLOBAL_FRAMES
-from descgen.physics.control_claims import FRAME_PARAMS, default_frames
-from descgen.spec.prefix import FRAME_LEAVES, PREFIX_PARAMS
+from descgen.physics.control_claims import FRAME_LEAVES, FRAME_PARAMS, default_frames
+from descgen.spec.prefix import PREFIX_PARAMS
 
 
 def names_behind(
