@@ -259,8 +259,21 @@ def test_the_proof_sees_kinematics_gear_and_forces(package: Path) -> None:
     moved = text.replace('<body name="forearm_link" pos="0.3 0 0"', '<body name="forearm_link" pos="1.3 0 0"')
     assert moved != text
     geared = text.replace('<general name="elbow_joint"', '<general name="elbow_joint" gear="50"')
+
+    def forearm_inertial(change: str) -> str:
+        root = etree.fromstring(text.encode())
+        e = root.find(".//body[@name='forearm_link']/inertial")
+        if change == "heavy":
+            e.set("diaginertia", " ".join(str(100 * float(v)) for v in e.get("diaginertia").split()))
+        else:
+            x, y, z = (float(v) for v in e.get("pos").split())
+            e.set("pos", f"{x + 0.2} {y} {z}")
+        return etree.tostring(root, encoding="unicode")
+
+    heavy, shifted = forearm_inertial("heavy"), forearm_inertial("shifted")
     for wrong, needle in ((flipped, "'elbow_joint' axis"), (moved, "body 'forearm_link' is not where"),
-                          (geared, "gear of 50")):  # fmt: skip
+                          (geared, "gear of 50"), (heavy, "'forearm_link' inertia is not"),
+                          (shifted, "'forearm_link' centre of mass")):  # fmt: skip
         found = mujoco_model({"mujoco/warehouse_arm.xml": wrong}, robot, package)
         assert any(needle in f.message for f in found), (needle, [f.message for f in found])
 

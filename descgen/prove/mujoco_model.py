@@ -184,6 +184,17 @@ def _kinematics(model: Any, robot: Robot) -> list[str]:
         fused = sum(_mass(robot, lk) for lk in robot.body_of(name))
         if not _close(float(model.body_mass[b]), fused):
             out.append(f"body '{name}' weighs {float(model.body_mass[b]):g} kg, its links {fused:g} kg")
+        elif fused > 0:
+            com, tensor = _combined(robot, name, poses)
+            rot = np.zeros(9)
+            mujoco.mju_quat2Mat(rot, model.body_iquat[b])
+            r = rot.reshape(3, 3)
+            theirs = r @ np.diag(model.body_inertia[b]) @ r.T
+            scale = max(float(np.abs(tensor).max()), 1e-12)
+            if not np.allclose(model.body_ipos[b], com, atol=TOLERANCE * 10):
+                out.append(f"body '{name}' centre of mass {tuple(model.body_ipos[b])}, its links' {tuple(com)}")
+            elif not np.allclose(theirs, tensor, atol=1e-4 * scale):
+                out.append(f"body '{name}' inertia is not its links' (about their centre of mass)")
     for j in robot.joints:
         i = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, j.name)
         if i < 0 or j.axis is None or j.type not in KINDS:
@@ -192,6 +203,39 @@ def _kinematics(model: Any, robot: Robot) -> list[str]:
         if not np.allclose(model.jnt_axis[i], want, atol=TOLERANCE * 10):
             out.append(f"joint '{j.name}' axis {tuple(float(x) for x in model.jnt_axis[i])}, the URDF's {tuple(want)}")
     return out
+
+
+def _combined(robot: Robot, body: str, poses: dict[str, Any]) -> tuple[Any, Any]:
+    """The centre of mass and inertia tensor (about it), in ``body``'s frame, of the links fused
+    into it (each link's inertial moved by the links' poses: the parallel-axis theorem)."""
+    import numpy as np
+
+    from descgen.physics.transforms import rpy_matrix
+
+    inv = np.linalg.inv(poses[body])
+    parts = []
+    for name in robot.body_of(body):
+        lk = robot.link(name)
+        if lk is None or lk.inertial is None or not lk.inertial.mass or name not in poses:
+            continue
+        i = lk.inertial
+        frame = inv @ poses[name]
+        r = frame[:3, :3] @ rpy_matrix(i.origin.rpy)
+        com = frame[:3, :3] @ np.array(i.origin.xyz) + frame[:3, 3]
+        t = i.inertia
+        own = (
+            np.zeros((3, 3))
+            if t is None
+            else np.array([[t.ixx, t.ixy, t.ixz], [t.ixy, t.iyy, t.iyz], [t.ixz, t.iyz, t.izz]])
+        )
+        parts.append((float(i.mass or 0.0), com, r @ own @ r.T))
+    total = sum(m for m, _, _ in parts)
+    centre = sum(m * c for m, c, _ in parts) / total
+    tensor = np.zeros((3, 3))
+    for m, c, own in parts:
+        d = c - centre
+        tensor += own + m * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+    return centre, tensor
 
 
 def _mass(robot: Robot, link: str) -> float:
