@@ -17,7 +17,7 @@ from descgen.physics.poses import worst_mm
 from descgen.read.params import typed
 from descgen.render.control_blocks import control_blocks, control_depends
 from descgen.render.formatting import num, vec, xacro_text
-from descgen.render.views import Values, calibration_keys, items, prefix_arg
+from descgen.render.views import Values, calibration_keys, items, name_writer
 from descgen.spec.passthrough import for_xacro
 
 # exec_depends of what the launch files start and what controller_manager loads
@@ -212,10 +212,7 @@ def control_extras(robot: Robot, xacro: bool, controllers_file: str | None = Non
     text = xacro_text if xacro else str
     if rc is None:
         return {"control_sensors": [], "control_gpios": [], "hw_variants": [], "hw_variant_names": [], "gz_sim": None}
-    prefix = robot.prefix.value if robot.prefix is not None and xacro else ""
-
-    def shown(name: str) -> str:
-        return prefix_arg(name, prefix)
+    shown = name_writer(robot, xacro)
 
     def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
         return [(k, text(v)) for k, v in items]

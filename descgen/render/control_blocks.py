@@ -8,7 +8,7 @@ from typing import Any
 from descgen.core.model import HardwareBlock, Robot, Ros2Control
 from descgen.physics import derive
 from descgen.render.formatting import xacro_text
-from descgen.render.views import prefix_arg
+from descgen.render.views import name_writer
 
 
 def in_block(rc: Ros2Control, block: HardwareBlock, owner: str) -> bool:
@@ -23,12 +23,8 @@ def control_blocks(robot: Robot, xacro: bool) -> list[dict[str, Any]]:
     if rc is None:
         return []
     text = xacro_text if xacro else str
-    prefix = robot.prefix.value if robot.prefix is not None and xacro else ""
-
-    def shown(name: str) -> str:  # the Xacro writes the prefix as its argument (render/views.py)
-        return prefix_arg(name, prefix)
-
-    frames = {lk.name for lk in robot.links} if prefix else set()
+    shown = name_writer(robot, xacro)  # the Xacro writes the prefix as its argument
+    frames = {lk.name for lk in robot.links} if robot.prefix is not None and xacro else set()
 
     def params(items: tuple[tuple[str, str], ...]) -> list[tuple[str, str]]:
         # a param naming one of the robot's frames (a sensor's frame_id) takes the prefix argument too

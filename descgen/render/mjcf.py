@@ -23,6 +23,7 @@ it relative to itself (``../meshes/...``). Another package's mesh, or a COLLADA 
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -239,10 +240,12 @@ def _with_mesh_paths(text: str, robot: Robot, assets: dict[str, bytes]) -> str:
         return text
     root = etree.fromstring(text.encode("utf-8"))
     by_source = {str(source): rel for rel, source in own_meshes(robot).items()}
+    contents = _by_content(by_source)
     own = f"package://{package_name(robot)}/"
     for mesh in root.iter("mesh"):
         file = mesh.get("file", "")
-        rel = _package_path(file, robot, assets, by_source)
+        data = assets.get(file)  # render/mujoco_urdf.py hands each file over once, by its bytes
+        rel = contents.get(hashlib.sha256(data).hexdigest()) if data is not None else None
         if rel is None:
             meshes = sorted(
                 {c.geometry.filename for lk in robot.links for c in lk.collisions if isinstance(c.geometry, Mesh)}
@@ -254,24 +257,17 @@ def _with_mesh_paths(text: str, robot: Robot, assets: dict[str, bytes]) -> str:
     return etree.tostring(root, encoding="unicode")
 
 
-def _package_path(neutral: str, robot: Robot, assets: dict[str, bytes], by_source: dict[str, str]) -> str | None:
-    """The package path of the file ``emit`` handed MuJoCo as ``neutral`` (render/mujoco_urdf.py
-    names each file once, in order; its bytes are the file's)."""
-    data = assets.get(neutral)
-    if data is None:
-        return None
+def _by_content(by_source: dict[str, str]) -> dict[str, str]:
+    """sha256 of each own STL or OBJ file -> its package path, each file read once."""
+    out: dict[str, str] = {}
     for source, rel in by_source.items():
-        if rel.lower().endswith((".stl", ".obj")) and _same(source, data):
-            return rel
-    return None
-
-
-def _same(source: str, data: bytes) -> bool:
-    try:
-        with open(source, "rb") as f:
-            return f.read() == data
-    except OSError:
-        return False
+        if rel.lower().endswith((".stl", ".obj")):
+            try:
+                with open(source, "rb") as f:
+                    out.setdefault(hashlib.sha256(f.read()).hexdigest(), rel)
+            except OSError:
+                continue
+    return out
 
 
 def _with_header(text: str, changes: list[str]) -> str:

@@ -10,6 +10,7 @@ part becomes one macro whose instances differ only by names and origin.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from markupsafe import Markup
@@ -307,6 +308,12 @@ def prefix_arg(name: str, prefix: str) -> str:
     if not prefix or not name.startswith(prefix) or name in GLOBAL_FRAMES:  # "world" with prefix "wo"
         return name
     return PREFIX_ARG + name[len(prefix) :]
+
+
+def name_writer(robot: Robot, xacro: bool) -> Callable[[str], str]:
+    """How a template family writes the robot's names: the Xacro with its prefix argument."""
+    prefix = robot.prefix.value if robot.prefix is not None and xacro else ""
+    return lambda name: prefix_arg(name, prefix)
 
 
 def calibration_keys(robot: Robot) -> dict[str, str]:
