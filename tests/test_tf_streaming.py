@@ -110,7 +110,12 @@ def test_several_recordings_with_jobs(tmp_path: Path) -> None:
     r = cli("tf-audit", str(a), str(b), "--target", "odom", "--max-age", "100 ms", "--jobs", "2", "--format", "json")
     assert r.returncode == 1, r.stderr  # a holds 30 future-dated messages (k = 60..89, see test_tf_scenario)
     doc = json.loads(r.stdout)
-    assert doc == {"recordings": {str(a): alone[0], str(b): alone[1]}}
+    # each says it cannot tell the robot: the scenario recorded no /robot_description
+    unknown = {
+        "identity": [{"robot": None, "description": None, "description_sha256": None, "source": "none"}],
+        "windows": 1,
+    }
+    assert doc == {"recordings": {str(a): alone[0] | unknown, str(b): alone[1] | unknown}}
     assert doc["recordings"][str(a)]["future"] == 30 and doc["recordings"][str(b)]["ok"] == 60
     r = cli("tf-audit", str(b), str(b), "--target", "odom", "--jobs", "2")
     assert r.returncode == 0 and r.stdout.count(f"== {b}") == 2
@@ -128,7 +133,7 @@ def test_jobs_is_a_whole_number_of_processes(value: str, message: str) -> None:
     assert r.returncode == 2 and f"argument --jobs: {message}" in r.stderr and "Traceback" not in r.stderr
 
 
-@pytest.mark.parametrize(("jobs", "unit"), [("1", "msg/s"), ("2", "recording/s")])
+@pytest.mark.parametrize(("jobs", "unit"), [("1", "msg/s"), ("2", "B/s")])
 def test_progress_on_a_terminal_and_not_in_a_pipe(tmp_path: Path, jobs: str, unit: str) -> None:
     import os
     import subprocess
@@ -142,7 +147,7 @@ def test_progress_on_a_terminal_and_not_in_a_pipe(tmp_path: Path, jobs: str, uni
     env = {k: v for k, v in os.environ.items() if k != "CI"}
     args = ["tf-audit", str(a), str(b), "--target", "odom", "--jobs", jobs]
     shown = on_a_terminal(args, env)
-    assert unit in shown, shown[:400]  # tqdm's bar: messages read, or recordings done with --jobs
+    assert unit in shown, shown[:400]  # tqdm's bar: messages read, or bytes read (and recordings done) with --jobs
     piped = subprocess.run([sys.executable, "-m", "descgen", *args], capture_output=True, text=True, env=env)
     assert piped.returncode == 0 and unit not in piped.stderr and "\r" not in piped.stderr
     assert on_a_terminal([*args, "--format", "json"], env).count(unit) == 0

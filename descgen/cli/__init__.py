@@ -13,13 +13,14 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from descgen import __version__
 from descgen.cli import arguments as types
 from descgen.codes.graph import GRAPH010
 from descgen.codes.importer import IMP007
 from descgen.codes.read import CTRL055
+from descgen.codes.recording import BAG016
 from descgen.commands import text as cli_format
 from descgen.core.findings import Finding, InputError, Where, summary
 from descgen.infra import collector
@@ -352,24 +353,79 @@ def _cmd_frames(args: argparse.Namespace) -> int:
 
 
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
-    from descgen.commands.tf.bagaudit import audit_each
+    from descgen.commands.fleet.run import audit_fleet
     from descgen.infra.progress import wanted
 
-    bags = [Path(b) for b in args.bag]
+    if args.address is not None and args.engine != "ray":
+        raise InputError(
+            [
+                BAG016.finding(
+                    "--address is the Ray cluster's: it needs --engine ray",
+                    "add --engine ray, or leave --address out",
+                    "option",
+                    types.COMMAND_LINE,
+                )
+            ]
+        )
     topics = tuple(args.topic or ())
     show = wanted(args.format == "text")
-    outcomes = audit_each(bags, args.target, args.jobs, show, topics=topics, wait_ns=args.wait, max_age_ns=args.max_age)
-    errors = [f for _, found in outcomes for f in found]
-    reps = [rep for rep, _ in outcomes if rep is not None]
-    if errors and not reps:
+    mappings = tuple(args.robot or ())
+    options = {"topics": topics, "wait_ns": args.wait, "max_age_ns": args.max_age}
+    run = {"engine": args.engine, "jobs": args.jobs, "address": args.address, "window_ns": args.window}
+    if args.out is None:
+        outcomes = audit_fleet(args.bag, args.target, show_progress=show, **run, **options)
+    else:
+        from descgen.commands.fleet.table import rows, schema, table
+        from descgen.write.findings_table import TableFile, check_out, pyarrow_modules
+
+        pa, _ = pyarrow_modules()
+        check_out(args.out, args.force)
+        with TableFile(args.out, schema(pa), args.force) as out:
+
+            def each(i: int, outcome: Any) -> None:
+                out.write(table(pa, rows(outcome, args.target, mappings)))
+                if outcome.report is not None:
+                    outcome.report.failures = []  # written: one recording's rows are held at a time
+
+            outcomes = audit_fleet(
+                args.bag, args.target, show_progress=show, each=each, keep_failures=True, **run, **options
+            )
+            if not any(o.report is not None for o in outcomes):  # nothing audited: nothing written
+                raise InputError([f for o in outcomes for f in o.findings])
+    errors = [f for o in outcomes for f in o.findings]
+    if errors and not any(o.report is not None for o in outcomes):
         raise InputError(errors)  # nothing to report: exit 2, as for one recording
     if args.format == "json":
-        sys.stdout.write(json.dumps(cli_format.tf_audit_json(args.bag, outcomes), indent=2) + "\n")
+        sys.stdout.write(json.dumps(cli_format.tf_audit_json(outcomes, args.target, mappings), indent=2) + "\n")
     else:
-        sys.stdout.write(cli_format.tf_audit_texts(args.bag, outcomes, args.target))
+        sys.stdout.write(cli_format.tf_audit_texts(outcomes, args.target, mappings))
     if errors:  # the readable recordings are reported above; the unreadable one is exit 2
         raise InputError(errors)
+    reps = [o.report for o in outcomes if o.report is not None]
     return EXIT_FAILED if any(rep.lookups - rep.counts["ok"] for rep in reps) else EXIT_OK
+
+
+def _cmd_fleet_report(args: argparse.Namespace) -> int:
+    from descgen.commands.fleet.page import PLOTS, markdown, text
+    from descgen.commands.fleet.rollup import roll_up
+    from descgen.write.fleet_report import check_folder, write_report
+
+    check_folder(args.out, ["README.md", *PLOTS])  # before reading a fleet's tables
+    rollup = roll_up(args.findings, args.threshold / 100)
+    rates: dict[str, list[tuple[str, float]]] = {}
+    by_version: dict[str, dict[str, int]] = {}
+    for d in rollup.days:
+        rates.setdefault(d.robot, []).append((d.day, d.rate))
+        for v in d.versions:  # a day on two versions counts for both
+            bucket = by_version.setdefault(v, {})
+            for c, n in d.failed.items():
+                bucket[c] = bucket.get(c, 0) + n
+    page = write_report(args.out, markdown(rollup), rates, by_version, PLOTS)
+    if args.format == "json":
+        sys.stdout.write(json.dumps(rollup.as_dict() | {"page": str(page)}, indent=2) + "\n")
+    else:
+        sys.stdout.write(text(rollup, str(page)))
+    return EXIT_FAILED if rollup.robots or rollup.versions else EXIT_OK
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:
@@ -377,7 +433,21 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
     from descgen.commands.tf.scenario import write
 
     robot = load_spec(args.spec, package_paths=_packages(args)).robot
-    counts = write(robot, args.out, tuple(args.fault or ()), args.duration, args.storage)
+    urdf = None
+    if args.description:  # the URDF generate writes, as robot_state_publisher would publish it
+        from descgen.render import render_package
+
+        urdf = render_package(robot, args.spec, only=[f"urdf/{robot.name}.urdf"])[f"urdf/{robot.name}.urdf"]
+    start = args.start if args.start is not None else None
+    counts = write(
+        robot,
+        args.out,
+        tuple(args.fault or ()),
+        args.duration,
+        args.storage,
+        **({"start_ns": start} if start is not None else {}),
+        description=urdf,
+    )
     print(f"wrote {args.out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
     return EXIT_OK
 
@@ -554,6 +624,10 @@ def _simulate_bounds() -> tuple[float, float]:
     from descgen.commands.simulate import MAX_SECONDS, MIN_SECONDS
 
     return MIN_SECONDS, MAX_SECONDS
+
+
+def _window_bounds() -> tuple[float, float]:
+    return 1.0, 7 * 24 * 3600.0  # a second (all else is horizon) to a week
 
 
 def _wait_bounds() -> tuple[float, float]:
@@ -782,8 +856,43 @@ def parser() -> argparse.ArgumentParser:
         type=types.Nanoseconds("--max-age", _wait_bounds),
         help="flag interpolation across samples farther than this (e.g. '100 ms'; at most 1 h)",
     )
+    ta.add_argument(
+        "--engine",
+        choices=("local", "ray"),
+        default="local",
+        help="where the recordings are audited: this machine's processes (--jobs), or a Ray cluster",
+    )
+    ta.add_argument(
+        "--address", type=types.address, help="the Ray cluster's head (host:port or auto); default: start a local one"
+    )
+    ta.add_argument(
+        "--window",
+        type=types.Nanoseconds("--window", _window_bounds),
+        help="audit recordings longer than this in time windows of this length, in parallel (e.g. '10 min')",
+    )
+    ta.add_argument("--out", type=types.path, help="write every failed lookup and a summary per topic as Parquet")
+    ta.add_argument("--force", action="store_true", help="replace an existing --out file")
+    ta.add_argument(
+        "--robot",
+        action="append",
+        type=types.robot_mapping,
+        metavar="GLOB=ROBOT[@VERSION]",
+        help="recordings whose path matches GLOB are of ROBOT (at VERSION); default: from /robot_description",
+    )
     ta.add_argument("--format", choices=("text", "json"), default="text")
     ta.set_defaults(fn=_cmd_tf_audit)
+
+    fl = sub.add_parser("fleet-report", help="roll tf-audit findings tables up by robot, description version and day")
+    fl.add_argument("findings", nargs="+", type=types.path, help="Parquet files written by tf-audit --out")
+    fl.add_argument("--out", type=types.path, default=Path("fleet-report"), help="folder for the page and its plots")
+    fl.add_argument(
+        "--threshold",
+        type=types.percent,
+        default=0.0,
+        help="a robot-day fails when more than this share of its lookups failed (percent; default 0)",
+    )
+    fl.add_argument("--format", choices=("text", "json"), default="text")
+    fl.set_defaults(fn=_cmd_fleet_report)
 
     sc = sub.add_parser("tf-scenario", help="write a short recording of the robot, optionally with planted faults")
     sc.add_argument("spec")
@@ -796,6 +905,16 @@ def parser() -> argparse.ArgumentParser:
         help="length of the recording, e.g. '10 s' (a bare number is seconds; at most 10 min)",
     )
     sc.add_argument("--storage", choices=("mcap", "sqlite3"), default="mcap")
+    sc.add_argument(
+        "--start",
+        type=types.start_time,
+        help="when the recording starts (ISO 8601, UTC by default; default 2023-11-14T22:13:20)",
+    )
+    sc.add_argument(
+        "--description",
+        action="store_true",
+        help="record /robot_description (the URDF), as robot_state_publisher latches it",
+    )
     package_path(sc)
     sc.set_defaults(fn=_cmd_tf_scenario)
 

@@ -272,3 +272,48 @@ class Length:
         if not 0 < value <= 1.0 or not math.isfinite(value):
             raise argparse.ArgumentTypeError(f"{self.option} {text[:40]!a} is not between 0 and 1 m")
         return value
+
+
+def robot_mapping(text: str) -> object:
+    """``--robot GLOB=ROBOT[@VERSION]`` (tf-audit): which recordings are of which robot."""
+    from descgen.commands.fleet.identity import parse
+
+    try:
+        return parse(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"'{text[:60]}': {exc}") from None
+
+
+def address(text: str) -> str:
+    """``--address`` of a Ray cluster: host:port, ray://host:port or auto; one printable word."""
+    if not text or len(text) > 300 or any(not c.isprintable() or c.isspace() for c in text):
+        raise argparse.ArgumentTypeError("give the head node as host:port, ray://host:port or auto")
+    return text
+
+
+def start_time(text: str) -> int:
+    """``--start`` of tf-scenario: an ISO 8601 date and time (UTC unless it says otherwise), as
+    nanoseconds since the epoch."""
+    from datetime import UTC, datetime
+
+    try:
+        when = datetime.fromisoformat(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not an ISO 8601 time, e.g. 2026-11-29T08:00:00") from None
+    if when.tzinfo is None:
+        when = when.replace(tzinfo=UTC)
+    if not 1970 <= when.astimezone(UTC).year < 2100:
+        raise argparse.ArgumentTypeError(f"{text[:40]} is outside 1970 to 2099")
+    delta = when - datetime(1970, 1, 1, tzinfo=UTC)
+    return (delta.days * 86400 + delta.seconds) * 1_000_000_000 + delta.microseconds * 1000
+
+
+def percent(text: str) -> float:
+    """A share in percent, 0 to 100 (a trailing % allowed)."""
+    try:
+        value = float(text.strip().removesuffix("%"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text[:40]}' is not a percentage, e.g. 0.5") from None
+    if not 0.0 <= value <= 100.0:  # NaN fails both
+        raise argparse.ArgumentTypeError(f"{text[:40]} is outside 0 to 100 percent")
+    return value

@@ -79,3 +79,48 @@ BAG014 = declare(
     "The path is not a rosbag2 folder (missing, a file, no metadata.yaml, or metadata too large).",
     """Only rosbag2 folders can be read. Give the recording's folder.""",
 )
+
+BAG015 = declare(
+    "BAG015",
+    "findings-table-unwritable",
+    "error",
+    "The findings table (--out) cannot be written there.",
+    """The table is written whole or not at all, as a regular file: an existing one is replaced only
+      with --force, and never a link, folder or device. Choose another --out.""",
+)
+
+BAG016 = declare(
+    "BAG016",
+    "engine-unavailable",
+    "error",
+    "The engine asked for cannot run the audit (not installed, or its cluster cannot be reached).",
+    """`--engine ray` needs the fleet extra (`pip install 'descgen[fleet]'`) here and on every node of
+      the cluster, at the same descgen version. Install it, or check --address.""",
+)
+
+BAG017 = declare(
+    "BAG017",
+    "recording-audit-crashed",
+    "error",
+    "The audit of a recording crashed its worker, so the recording has no result.",
+    """The other recordings are reported; this one is not audited. A worker killed for memory or a
+      crash in a library reading the recording ends here: audit it alone to see why.""",
+)
+
+BAG020 = declare(
+    "BAG020",
+    "findings-table-unreadable",
+    "error",
+    "A findings table given to fleet-report cannot be read, or is not a tf-audit findings table.",
+    """fleet-report reads the Parquet files `tf-audit --out` writes, with their columns. Give such a
+      file.""",
+)
+
+BAG021 = declare(
+    "BAG021",
+    "fleet-report-unwritable",
+    "error",
+    "The fleet report's folder cannot be written.",
+    """The page and its plots are written to a new or empty folder (or one fleet-report wrote before).
+      Choose another --out.""",
+)

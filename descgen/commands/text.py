@@ -12,8 +12,9 @@ from descgen.output.report import printable
 
 if TYPE_CHECKING:
     from descgen.commands.faults import Result
+    from descgen.commands.fleet.identity import Identity, Mapping
+    from descgen.commands.fleet.run import Outcome
     from descgen.commands.tf.bagaudit import Report
-    from descgen.core.findings import Finding
     from descgen.core.model import Robot
     from descgen.physics.frames import Edge
     from descgen.physics.poses import Row
@@ -165,29 +166,68 @@ def tf_audit_text(rep: Report, target: str) -> str:
     return "".join(line + "\n" for line in lines)
 
 
-def tf_audit_texts(
-    bags: Sequence[str], outcomes: Sequence[tuple[Report | None, Sequence[Finding]]], target: str
-) -> str:
+def _identities(o: Outcome, mappings: Sequence[Mapping]) -> list[Identity]:
+    from descgen.commands.fleet.identity import resolve
+
+    rep = o.report
+    assert rep is not None
+    versions = sorted({v for _, v in rep.spans}) or [-1]
+    out: list[Identity] = []
+    for v in versions:
+        ident = resolve(o.path, rep.descriptions, v, tuple(mappings))
+        if ident not in out:
+            out.append(ident)
+    return out
+
+
+def _fleet_lines(o: Outcome, mappings: Sequence[Mapping]) -> str:
+    from descgen.commands.tf.bagaudit import shown
+
+    lines = [shown(i.said(), 300) for i in _identities(o, mappings)]
+    if o.windows > 1 and not o.note:
+        lines.append(f"audited in {o.windows} time windows, joined as one pass (their boundaries agree)")
+    if o.note:
+        lines.append(o.note)
+    return "".join(line + "\n" for line in lines)
+
+
+def tf_audit_texts(outcomes: Sequence[Outcome], target: str, mappings: Sequence[Mapping] = ()) -> str:
     """One recording's report as before; several, each readable one under its name (an
-    unreadable one is an input error, printed as a finding)."""
-    if len(outcomes) == 1 and outcomes[0][0] is not None:
-        return tf_audit_text(outcomes[0][0], target)
+    unreadable one is an input error, printed as a finding). Each says which robot and
+    description version it is of, or that it cannot tell."""
+    if len(outcomes) == 1 and outcomes[0].report is not None:
+        return tf_audit_text(outcomes[0].report, target) + _fleet_lines(outcomes[0], mappings)
     return "".join(
-        f"== {printable(bag)}\n" + tf_audit_text(rep, target)
-        for bag, (rep, _) in zip(bags, outcomes, strict=True)
-        if rep is not None
+        f"== {printable(o.path)}\n" + tf_audit_text(o.report, target) + _fleet_lines(o, mappings)
+        for o in outcomes
+        if o.report is not None
     )
 
 
-def tf_audit_json(bags: Sequence[str], outcomes: Sequence[tuple[Report | None, Sequence[Finding]]]) -> dict[str, Any]:
+def tf_audit_json(outcomes: Sequence[Outcome], target: str, mappings: Sequence[Mapping] = ()) -> dict[str, Any]:
     """One recording's report as before; several as {"recordings": {folder: report}}, an
-    unreadable one as {"errors": [finding, ...]} in its place."""
-    if len(outcomes) == 1 and outcomes[0][0] is not None:
-        return outcomes[0][0].as_dict()
+    unreadable one as {"errors": [finding, ...]} in its place. Each report adds "identity" (robot,
+    description version, SHA-256 and where they came from) and "windows"."""
+
+    def one(o: Outcome) -> dict[str, Any]:
+        assert o.report is not None
+        return (
+            o.report.as_dict()
+            | {
+                "identity": [
+                    {"robot": i.robot, "description": i.version, "description_sha256": i.sha256, "source": i.source}
+                    for i in _identities(o, mappings)
+                ],
+                "windows": o.windows,
+            }
+            | ({"note": o.note} if o.note else {})
+        )
+
+    if len(outcomes) == 1 and outcomes[0].report is not None:
+        return one(outcomes[0])
     return {
         "recordings": {
-            bag: rep.as_dict() if rep is not None else {"errors": [f.as_dict() for f in found]}
-            for bag, (rep, found) in zip(bags, outcomes, strict=True)
+            o.path: one(o) if o.report is not None else {"errors": [f.as_dict() for f in o.findings]} for o in outcomes
         }
     }
 

@@ -28,10 +28,11 @@ def _nothing(n: int = 1) -> None:
 
 
 @contextmanager
-def counting(total: int | None, what: str, unit: str, show: bool) -> Iterator[Step]:
+def counting(total: int | None, what: str, unit: str, show: bool, scale: bool = False) -> Iterator[Step]:
     """A function to call with each step's count (``step(1)``); a bar of ``total`` steps on
     stderr while the block runs when ``show``, else a function that does nothing. The bar is
-    cleared when the block ends, so the command's own report follows on a clean line."""
+    cleared when the block ends, so the command's own report follows on a clean line. ``scale``:
+    the count in k, M, G (bytes read shown as MB and MB/s)."""
     if not show:
         yield _nothing
         return
@@ -40,12 +41,42 @@ def counting(total: int | None, what: str, unit: str, show: bool) -> Iterator[St
     # no monitor thread: a bar is drawn from the working thread, and a thread alive while
     # `audit --jobs` forks its workers is what fork-safety warnings are about
     tqdm.monitor_interval = 0
-    bar = tqdm(total=total, desc=what, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
+    bar = tqdm(
+        total=total,
+        desc=what,
+        unit=unit,
+        file=sys.stderr,
+        leave=False,
+        dynamic_ncols=True,
+        unit_scale=scale,
+        unit_divisor=1000,
+    )
 
     def step(n: int = 1) -> None:
         bar.update(n)
 
+    step.bar = bar  # type: ignore[attr-defined]  # for reading(): the items done beside the bytes
     try:
         yield step
     finally:
         bar.close()
+
+
+@contextmanager
+def reading(total_bytes: int | None, items: int, what: str, show: bool) -> Iterator[Step]:
+    """A bar of bytes read (MB and MB/s) that also counts the items done: ``step(nbytes)`` as
+    each item is done. Nothing when not ``show``, as :func:`counting`."""
+    with counting(total_bytes, what, "B", show, scale=True) as step:
+        if not show:
+            yield step
+            return
+        done = [0]
+        bar = getattr(step, "bar", None)
+
+        def item(n: int = 0) -> None:
+            done[0] += 1
+            if bar is not None:
+                bar.set_postfix_str(f"{done[0]}/{items} done", refresh=False)
+            step(n)
+
+        yield item

@@ -25,7 +25,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TypeVar
 
@@ -38,22 +38,64 @@ R = TypeVar("R")
 SIGTERM_EXIT = 128 + signal.SIGTERM
 
 
-def map_in_processes(fn: Callable[[T], R], items: Sequence[T], jobs: int, step: Step | None = None) -> list[R]:
+def map_in_processes(
+    fn: Callable[[T], R],
+    items: Sequence[T],
+    jobs: int,
+    step: Step | None = None,
+    crashed: Callable[[T], R] | None = None,
+    weight: Callable[[T], int] | None = None,
+) -> list[R]:
     """``[fn(x) for x in items]``, up to ``jobs`` at once in worker processes (never more than
-    the items or the CPUs: CPU-bound work gains nothing beyond them); ``step(1)`` as each is done."""
-    done = step or (lambda n: None)
-    workers = min(jobs, len(items), _cpus())
+    the items or the CPUs: CPU-bound work gains nothing beyond them); ``step(1)`` as each is done.
+    ``crashed`` and ``weight`` as for :func:`each_in_processes`."""
     results: dict[int, R] = {}
-    if workers > 1:
-        _in_workers(fn, items, workers, results, done)
-    for i, item in enumerate(items):  # everything, or what the workers could not finish
-        if i not in results:
-            results[i] = fn(item)
-            done(1)
+    each_in_processes(fn, items, jobs, results.__setitem__, step, crashed, weight)
     return [results[i] for i in range(len(items))]
 
 
-def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results: dict[int, R], done: Step) -> None:
+def each_in_processes(
+    fn: Callable[[T], R],
+    items: Sequence[T],
+    jobs: int,
+    sink: Callable[[int, R], None],
+    step: Step | None = None,
+    crashed: Callable[[T], R] | None = None,
+    weight: Callable[[T], int] | None = None,
+) -> None:
+    """``sink(i, fn(items[i]))`` for every item, as each is done (in any order, nothing kept
+    here: a caller that writes each result out holds one at a time).
+
+    ``crashed``: what an item whose worker died gives. Without it, what a dead worker left is
+    done again in this process (a worker killed for memory while others ran); with it, each
+    such item runs again alone in a new worker, and one that kills that worker too gives
+    ``crashed(item)``, so one item that crashes its process cannot end the others' work.
+    ``weight``: what ``step`` is given for an item (its bytes, say), 1 without it."""
+    tick = step or (lambda n: None)
+    finished: set[int] = set()
+
+    def done(i: int, result: R) -> None:
+        finished.add(i)
+        sink(i, result)
+        tick(weight(items[i]) if weight else 1)
+
+    workers = min(jobs, len(items), _cpus())
+    if workers > 1:
+        _in_workers(fn, items, range(len(items)), workers, done)
+    for i, item in enumerate(items):  # everything, or what the workers could not finish
+        if i in finished:
+            continue
+        if crashed is None or workers <= 1:
+            done(i, fn(item))
+            continue
+        _in_workers(fn, items, [i], 1, done)  # alone in a new worker
+        if i not in finished:
+            done(i, crashed(item))
+
+
+def _in_workers(
+    fn: Callable[[T], R], items: Sequence[T], chosen: Iterable[int], workers: int, done: Callable[[int, R], None]
+) -> None:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
@@ -68,13 +110,12 @@ def _in_workers(fn: Callable[[T], R], items: Sequence[T], workers: int, results:
                 # worker nobody knows of, so SIGINT and SIGTERM wait until they are started
                 # (the pool's threads keep them blocked; the workers unblock them)
                 with interruptions.held():
-                    for i, item in enumerate(items):
-                        futures[pool.submit(fn, item)] = i
+                    for i in chosen:
+                        futures[pool.submit(fn, items[i])] = i
                 for future in as_completed(futures):
-                    results[futures[future]] = future.result()
-                    done(1)
+                    done(futures[future], future.result())
             except (BrokenProcessPool, OSError):
-                pass  # a worker died or could not start: the caller does the rest in this process
+                pass  # a worker died or could not start: the caller does the rest
     except BaseException:  # Ctrl-C, SIGTERM, or fn's own error: drop what has not started
         for future in futures:
             future.cancel()

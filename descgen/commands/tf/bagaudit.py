@@ -16,20 +16,75 @@ transform. Outcomes:
 
 from __future__ import annotations
 
+import hashlib
 import itertools
+from bisect import bisect_right
 from collections import Counter, deque
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from descgen.codes import Code
 from descgen.codes.recording import BAG001, BAG002, BAG010, BAG012, BAG013, BAG014
 from descgen.commands.tf.buffer import BufferCore, TransformError
-from descgen.core.findings import Finding, InputError, Where
+from descgen.core.findings import InputError, Where
 from descgen.infra.progress import counting
 
 TF_TOPICS = ("/tf", "/tf_static")
+DESCRIPTION_TOPIC = "/robot_description"  # robot_state_publisher's, std_msgs/String, transient local
 HISTOGRAM_MS = (0, 10, 50, 100, 500)  # bucket edges of log time - stamp
+OUTCOMES = ("ok", "disconnected", "stale", "future")
+
+
+class Failure(NamedTuple):
+    """One failed lookup: a row of the findings table (descgen/commands/fleet/table.py)."""
+
+    topic: str
+    log_ns: int
+    stamp: int
+    frame: str
+    outcome: str
+    detail: str
+    version: int  # index into Report.descriptions of the description in effect; -1: none
+
+
+class Description(NamedTuple):
+    """A /robot_description message of the recording: the URDF's hash and its robot's name."""
+
+    log_ns: int
+    sha256: str
+    robot: str
+
+
+@dataclass
+class Span:
+    """The lookups of one topic under one description: counts, time range and latency."""
+
+    counts: Counter[str] = field(default_factory=Counter)
+    first_ns: int = 0
+    last_ns: int = 0
+    latency_sum_ns: int = 0
+    latency_max_ns: int = 0
+
+    def add(self, outcome: str, log_ns: int, latency_ns: int) -> None:
+        if not self.counts:
+            self.first_ns = log_ns
+            self.latency_max_ns = latency_ns
+        self.counts[outcome] += 1
+        self.last_ns = log_ns
+        self.latency_sum_ns += latency_ns
+        self.latency_max_ns = max(self.latency_max_ns, latency_ns)
+
+    def merge(self, other: Span) -> None:
+        """``other`` holds later lookups than this span (the next time window)."""
+        if not other.counts:
+            return
+        if not self.counts:
+            self.first_ns, self.latency_max_ns = other.first_ns, other.latency_max_ns
+        self.counts.update(other.counts)
+        self.last_ns = other.last_ns
+        self.latency_sum_ns += other.latency_sum_ns
+        self.latency_max_ns = max(self.latency_max_ns, other.latency_max_ns)
 
 
 @dataclass
@@ -40,6 +95,12 @@ class Report:
     examples: list[dict[str, Any]] = field(default_factory=list)
     latency: Counter[str] = field(default_factory=Counter)
     results: list[tuple[str, int, str]] = field(default_factory=list)  # (topic, log ns, outcome) per lookup
+    failures: list[Failure] = field(default_factory=list)  # every failed lookup, with keep_failures
+    spans: dict[tuple[str, int], Span] = field(default_factory=dict)  # (topic, description index)
+    descriptions: list[Description] = field(default_factory=list)
+    frames: set[str] = field(default_factory=set)  # every frame named in what was read
+    boundary: tuple[str, str] = ("", "")  # the buffer's digest at a window's start and end
+    bytes_read: int = 0
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -54,7 +115,15 @@ class Report:
             },
             "examples": self.examples,
             "latency_ms_histogram": dict(self.latency),
-        }
+        } | (
+            {
+                "descriptions": [
+                    {"log_time_ns": d.log_ns, "sha256": d.sha256, "robot": d.robot} for d in self.descriptions
+                ]
+            }
+            if self.descriptions
+            else {}
+        )
 
 
 def _bucket(ms: float) -> str:
@@ -128,6 +197,19 @@ def _stamp(header: Any) -> int:
     return int(header.stamp.sec) * 1_000_000_000 + int(header.stamp.nanosec)
 
 
+@dataclass(frozen=True)
+class Window:
+    """A time slice of one recording, audited on its own (``tf-audit --window``): the sensor
+    messages logged in [start, stop), looked up in a buffer filled from ``start - horizon``
+    (static transforms from the beginning). The buffer's digest where the slice starts and
+    ends is kept, so the slices of a recording are known to have given what one pass gives
+    (descgen/commands/fleet/windows.py)."""
+
+    start: int
+    stop: int | None  # None: to the end of the recording
+    horizon: int
+
+
 @dataclass
 class _Pending:
     """A sensor message waiting for its deadline (log time + wait) before it is looked up."""
@@ -137,28 +219,42 @@ class _Pending:
     log_ns: int
     stamp: int
     frame: str
+    version: int
 
 
 class _Replay:
     """The audit as a stream: transforms go into the buffer in log-time order, and each
     sensor message is looked up once every transform logged by its deadline is in. Holds
     only the buffer (cache_ns of transforms), the messages still inside their wait, and
-    bounded counts: memory does not grow with the recording's length."""
+    bounded counts (with ``keep_failures``, the failed lookups too): memory does not grow
+    with the recording's length."""
 
     def __init__(
-        self, target: str, wait_ns: int, max_age_ns: int | None, cache_ns: int, examples: int, keep_results: bool
+        self,
+        target: str,
+        wait_ns: int,
+        max_age_ns: int | None,
+        cache_ns: int,
+        examples: int,
+        keep_results: bool,
+        keep_failures: bool = False,
     ) -> None:
         self.target, self.wait_ns, self.max_age_ns, self.examples = target, wait_ns, max_age_ns, examples
         self.buf = BufferCore(cache_ns)
         self.report = Report()
-        self.keep_results = keep_results
+        self.keep_results, self.keep_failures = keep_results, keep_failures
         self.pending: deque[_Pending] = deque()
-        self.frames: set[str] = set()  # every frame named in the recording, for BAG012
+        self.frames = self.report.frames  # every frame named in the recording, for BAG012
         self.shown_examples: Counter[str] = Counter()
+        self.version_times: list[int] = []  # log times of the recording's descriptions
 
     def sensor(self, topic: str, log_ns: int, stamp: int, frame: str) -> None:
         self.frames.add(frame)
-        self.pending.append(_Pending(log_ns + self.wait_ns, topic, log_ns, stamp, frame))
+        # the description in effect when the message was logged; one logged before the first
+        # description gets the first (robot_state_publisher's is latched: it was published
+        # before the recording started)
+        version = max(0, bisect_right(self.version_times, log_ns) - 1) if self.version_times else -1
+        self.pending.append(_Pending(log_ns + self.wait_ns, topic, log_ns, stamp, frame, version))
 
     def transforms(self, log_ns: int, msg: Any, static: bool) -> None:
         self.flush(log_ns)  # messages whose deadline is before this transform arrived
@@ -183,9 +279,17 @@ class _Replay:
         report.counts[outcome] += 1
         report.per_topic.setdefault(m.topic, Counter())[outcome] += 1
         report.latency[_bucket((m.log_ns - m.stamp) / 1e6)] += 1
+        span = report.spans.get((m.topic, m.version))
+        if span is None:
+            span = report.spans[(m.topic, m.version)] = Span()
+        span.add(outcome, m.log_ns, m.log_ns - m.stamp)
         if self.keep_results:
             report.results.append((m.topic, m.log_ns, outcome))
-        if outcome != "ok" and self.shown_examples[outcome] < self.examples:
+        if outcome == "ok":
+            return
+        if self.keep_failures:
+            report.failures.append(Failure(m.topic, m.log_ns, m.stamp, m.frame, outcome, detail, m.version))
+        if self.shown_examples[outcome] < self.examples:
             self.shown_examples[outcome] += 1
             report.examples.append(
                 {
@@ -198,6 +302,16 @@ class _Replay:
                 }
             )
 
+    def digest(self) -> str:
+        """The buffer's whole state as a digest: two replays whose buffers have one digest at
+        a time give the same lookups from then on (the span memo is a cache, left out)."""
+        h = hashlib.blake2b(digest_size=16)
+        for child in sorted(self.buf.caches):
+            c = self.buf.caches[child]
+            h.update(repr((child, c.static, c.stamps, c.parents, c.poses)).encode("utf-8", "surrogatepass"))
+        h.update(repr(sorted(self.buf.frames)).encode("utf-8", "surrogatepass"))
+        return h.hexdigest()
+
 
 def audit(
     path: Path,
@@ -209,57 +323,56 @@ def audit(
     examples: int = 5,
     keep_results: bool = False,
     show_progress: bool = False,
+    keep_failures: bool = False,
+    window: Window | None = None,
 ) -> Report:
     """Replay the recording once, in log-time order (the order rosbags yields: MCAP chunks
     merged by time, sqlite3 ORDER BY timestamp). ``keep_results`` keeps every lookup's
     outcome in ``Report.results``, which grows with the recording (tests use it);
-    ``show_progress`` draws the messages read on a terminal (descgen/infra/progress.py)."""
+    ``keep_failures`` every failed lookup in ``Report.failures``; ``show_progress`` draws the
+    messages read on a terminal (descgen/infra/progress.py). With ``window`` only that time
+    slice is looked up, and the checks of the whole recording (BAG010, BAG012) are left to
+    whoever joins the slices."""
     from rosbags.typesys import Stores, get_typestore
 
     ts = get_typestore(Stores.ROS2_JAZZY)
     reader = _open(path)
-    replay = _Replay(target, wait_ns, max_age_ns, cache_ns, examples, keep_results)
+    replay = _Replay(target, wait_ns, max_age_ns, cache_ns, examples, keep_results, keep_failures)
+    report = replay.report
     try:
         connections = list(reader.connections)
-        chosen = (
-            [c for c in connections if c.topic in topics]
-            if topics
-            else [
-                c
-                for c in connections
-                if _has_header(ts, c.topic, c.msgtype) and c.msgtype != "sensor_msgs/msg/JointState"
-            ]
-        )
-        missing = sorted(set(topics) - {c.topic for c in connections})
-        if missing:
-            raise InputError(
-                [
-                    BAG002.finding(
-                        f"topic {shown(missing[0])} is not in the recording",
-                        "list topics with `ros2 bag info`",
-                        "file",
-                        Where(str(path)),
-                    )
-                ]
-            )
-        for c in chosen:
-            if not _has_header(ts, c.topic, c.msgtype):
-                raise _unusable(
-                    BAG013,
-                    path,
-                    f"topic {shown(c.topic)} ({shown(c.msgtype)}) has no header to look up",
-                    "name a sensor topic whose messages have a std_msgs/Header",
-                )
+        chosen = _chosen(path, ts, connections, topics)
+        report.descriptions = _descriptions(reader, ts, connections)
+        replay.version_times = [d.log_ns for d in report.descriptions]
         tf_conns = [c for c in connections if c.topic in TF_TOPICS]
         read = tf_conns + chosen
-        total = sum(int(getattr(c, "msgcount", 0) or 0) for c in read) or None
+        start = stop = None
+        first, last = -(2**63), None  # sensor messages logged in [first, last) are looked up
+        if window is not None:
+            first, last = window.start, window.stop
+            start = window.start - window.horizon
+            # the last message's deadline is stop - 1 + wait, and rosbags' stop is exclusive
+            stop = None if window.stop is None else window.stop + wait_ns
+            static = [c for c in tf_conns if c.topic == "/tf_static"]
+            # static transforms are timeless: all of them before the window (no connection at all
+            # must read nothing: rosbags reads every connection when given none)
+            for _, log_ns, raw in reader.messages(connections=static, stop=start) if static else ():
+                replay.transforms(log_ns, ts.deserialize_cdr(raw, "tf2_msgs/msg/TFMessage"), True)
+                report.bytes_read += len(raw)
+        total = None if window else sum(int(getattr(c, "msgcount", 0) or 0) for c in read) or None
+        at_start = at_end = ""
         with counting(total, path.name, "msg", show_progress) as step:
             since = 0
-            for conn, log_ns, raw in reader.messages(connections=read):
+            for conn, log_ns, raw in reader.messages(connections=read, start=start, stop=stop):
+                if not at_start and log_ns >= first:
+                    at_start = replay.digest()
+                if not at_end and last is not None and log_ns >= last:
+                    at_end = replay.digest()
                 topic = conn.topic
+                report.bytes_read += len(raw)
                 if topic in TF_TOPICS:
                     replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
-                else:
+                elif first <= log_ns and (last is None or log_ns < last):
                     # rosbags decodes the whole message: reading the header from the bytes by hand was
                     # 2% of a 10-minute audit (benchmarks/bench_tf.py), not worth a second CDR reader
                     header = getattr(ts.deserialize_cdr(raw, conn.msgtype), "header")  # noqa: B009
@@ -269,6 +382,8 @@ def audit(
                     step(since)
                     since = 0
             step(since)
+        if window is not None:
+            report.boundary = (at_start or replay.digest(), at_end or replay.digest())
         replay.flush(None)
     except InputError:
         raise
@@ -278,8 +393,80 @@ def audit(
         ) from None
     finally:
         reader.close()
-    _check_lookups(path, target, topics, replay.report.lookups, replay.frames)
-    return replay.report
+    if window is None:
+        check_lookups(path, target, topics, report.lookups, report.frames)
+    return report
+
+
+def _chosen(path: Path, ts: Any, connections: list[Any], topics: tuple[str, ...]) -> list[Any]:
+    """The sensor topics' connections: those named, or every one with a header."""
+    chosen = (
+        [c for c in connections if c.topic in topics]
+        if topics
+        else [
+            c for c in connections if _has_header(ts, c.topic, c.msgtype) and c.msgtype != "sensor_msgs/msg/JointState"
+        ]
+    )
+    missing = sorted(set(topics) - {c.topic for c in connections})
+    if missing:
+        raise InputError(
+            [
+                BAG002.finding(
+                    f"topic {shown(missing[0])} is not in the recording",
+                    "list topics with `ros2 bag info`",
+                    "file",
+                    Where(str(path)),
+                )
+            ]
+        )
+    for c in chosen:
+        if not _has_header(ts, c.topic, c.msgtype):
+            raise _unusable(
+                BAG013,
+                path,
+                f"topic {shown(c.topic)} ({shown(c.msgtype)}) has no header to look up",
+                "name a sensor topic whose messages have a std_msgs/Header",
+            )
+    return chosen
+
+
+MAX_DESCRIPTIONS = 1000  # a description is published at start and on each reload: a handful per recording
+
+
+def _descriptions(reader: Any, ts: Any, connections: list[Any]) -> list[Description]:
+    """The recording's /robot_description messages, oldest first: each URDF's hash and robot
+    name. Read in a pass of their own (a few messages), so every time window of a recording
+    knows which description was in effect, however long before the window it was published."""
+    conns = [c for c in connections if c.topic == DESCRIPTION_TOPIC and c.msgtype == "std_msgs/msg/String"]
+    out: list[Description] = []
+    for _, log_ns, raw in reader.messages(connections=conns) if conns else ():
+        text = str(ts.deserialize_cdr(raw, "std_msgs/msg/String").data)
+        if out and out[-1].sha256 == hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest():
+            continue  # republished unchanged
+        out.append(
+            Description(log_ns, hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest(), _robot_name(text))
+        )
+        if len(out) >= MAX_DESCRIPTIONS:
+            break
+    return out
+
+
+MAX_URDF = 64 * 1024 * 1024
+
+
+def _robot_name(urdf: str) -> str:
+    """The ``<robot name>`` of a URDF from a recording (data: no entities, no network, bounded),
+    or "" when it is not one."""
+    from lxml import etree
+
+    if len(urdf) > MAX_URDF:
+        return ""
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
+        root = etree.fromstring(urdf.encode("utf-8", "surrogatepass"), parser)
+    except (etree.XMLSyntaxError, ValueError):
+        return ""
+    return str(root.get("name") or "") if root.tag == "robot" else ""
 
 
 def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
@@ -290,7 +477,7 @@ def _has_header(ts: Any, topic: str, msgtype: str) -> bool:
     )
 
 
-def _check_lookups(path: Path, target: str, topics: tuple[str, ...], lookups: int, frames: set[str]) -> None:
+def check_lookups(path: Path, target: str, topics: tuple[str, ...], lookups: int, frames: set[str]) -> None:
     """Refuse an audit that passed without looking anything up."""
     if not lookups:
         what = f"the topics {', '.join(shown(t) for t in topics)} hold" if topics else "the recording has"
@@ -332,30 +519,14 @@ MAX_JOBS = 64
 _PROGRESS_EVERY = 4096  # messages between two updates of the bar: its cost stays out of the loop
 
 
-def _audit_one(path: Path, kwargs: dict[str, Any]) -> tuple[Report | None, tuple[Finding, ...]]:
-    """One recording's audit, its input errors returned rather than raised (they cross a
-    process boundary as plain data)."""
+def time_range(path: Path) -> tuple[int, int]:
+    """When the recording's first and last messages were logged (ns), from its metadata."""
+    reader = _open(path)
     try:
-        return audit(path, **kwargs), ()
-    except InputError as exc:
-        return None, exc.findings
-
-
-def audit_each(
-    paths: list[Path], target: str, jobs: int = 1, show_progress: bool = False, **kwargs: Any
-) -> list[tuple[Report | None, tuple[Finding, ...]]]:
-    """Audit several recordings, ``jobs`` of them at a time in separate processes (each is one
-    CPU-bound stream): for each recording, in order, its report or the input errors that kept it
-    from one, so the readable recordings are reported beside the unreadable. ``show_progress``:
-    the messages of each recording on a terminal, or the recordings done with ``jobs``."""
-    kwargs["target"] = target
-    if jobs <= 1 or len(paths) <= 1:
-        outcomes = [_audit_one(p, kwargs | {"show_progress": show_progress}) for p in paths]
-    else:
-        from functools import partial
-
-        from descgen.infra.workers import map_in_processes
-
-        with counting(len(paths), "tf-audit", "recording", show_progress) as step:
-            outcomes = map_in_processes(partial(_audit_one, kwargs=kwargs), paths, jobs, step)
-    return outcomes
+        return int(reader.start_time), int(reader.end_time)
+    except Exception as exc:  # a metadata.yaml without the times
+        raise _unusable(
+            BAG001, path, f"cannot read the recording: {_one_line(exc)}", "check the recording's files"
+        ) from None
+    finally:
+        reader.close()

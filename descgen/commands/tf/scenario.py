@@ -41,6 +41,7 @@ NS = 1_000_000_000
 # to be written in seconds (ten minutes is ~60 000 messages per topic)
 MIN_DURATION_S = 0.1
 MAX_DURATION_S = 600.0
+START_NS = 1_700_000_000 * NS  # a fixed epoch by default: recordings are reproducible
 
 
 def _refuse(code: Code, out: Path, message: str, hint: str = "choose another --out") -> InputError:
@@ -89,10 +90,18 @@ def joint_values(robot: Robot, t: float) -> dict[str, float]:
 
 
 def write(
-    robot: Robot, out: Path, faults: tuple[str, ...] = (), duration: float = 10.0, storage: str = "mcap"
+    robot: Robot,
+    out: Path,
+    faults: tuple[str, ...] = (),
+    duration: float = 10.0,
+    storage: str = "mcap",
+    start_ns: int = START_NS,
+    description: str | None = None,
 ) -> dict[str, int]:
     """Write the recording to the new folder ``out``, whole or not at all (it is written
-    beside ``out`` and renamed into place); returns message counts per topic."""
+    beside ``out`` and renamed into place); returns message counts per topic. It starts at
+    ``start_ns`` (ns since the epoch); ``description``, a URDF, is recorded on
+    /robot_description as robot_state_publisher latches it."""
     check_out(out)
     if not MIN_DURATION_S <= duration <= MAX_DURATION_S:  # the library is called directly too
         raise _refuse(
@@ -108,7 +117,7 @@ def write(
     from rosbags.rosbag2 import WriterError
 
     try:
-        counts = _write(robot, staging / out.name, faults, duration, storage)
+        counts = _write(robot, staging / out.name, faults, duration, storage, start_ns, description)
         (staging / out.name).rename(out)
     except (OSError, WriterError) as exc:  # disk full, permissions, out created meanwhile
         raise _refuse(BAG011, out, f"cannot write {out}: {getattr(exc, 'strerror', None) or exc}") from None
@@ -117,7 +126,15 @@ def write(
     return counts
 
 
-def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, storage: str) -> dict[str, int]:
+def _write(
+    robot: Robot,
+    out: Path,
+    faults: tuple[str, ...],
+    duration: float,
+    storage: str,
+    start: int,
+    description: str | None,
+) -> dict[str, int]:
     from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
     from rosbags.rosbag2 import StoragePlugin, Writer
     from rosbags.typesys import Stores, get_typestore
@@ -129,6 +146,7 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     transform_, stamped_ = types["geometry_msgs/msg/Transform"], types["geometry_msgs/msg/TransformStamped"]
     tf_message_, joint_state_ = types["tf2_msgs/msg/TFMessage"], types["sensor_msgs/msg/JointState"]
     camera_info_, roi_ = types["sensor_msgs/msg/CameraInfo"], types["sensor_msgs/msg/RegionOfInterest"]
+    string_ = types["std_msgs/msg/String"]
 
     def stamp(ns: int) -> Any:
         return time_(sec=ns // NS, nanosec=ns % NS)
@@ -158,7 +176,6 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     )
     plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
     counts: dict[str, int] = {}
-    start = 1_700_000_000 * NS  # a fixed epoch: recordings are reproducible
     fixed = [j for j in robot.joints if j.type == "fixed" and j.parent and j.child]
     movable = [j for j in robot.joints if j.type in ONE_DOF and j.parent and j.child]
     period = int(NS / p.rate_hz)
@@ -167,6 +184,8 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     # Events are made lazily and merged by (log time, order of making): the same order a
     # stable sort of them all would give, without holding a long recording in memory.
     def static_events() -> Iterator[Event]:
+        if description is not None:  # robot_state_publisher latches it before its first transforms
+            yield (start + 500_000, -1, "/robot_description", string_(data=description), "std_msgs/msg/String")
         msg = tf_message_(transforms=[tf(j.parent or "", j.child or "", start, joint_transform(j)) for j in fixed])
         yield (start + 1_000_000, 0, "/tf_static", msg, "tf2_msgs/msg/TFMessage")
 
@@ -242,6 +261,7 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
 
     # connections in the order of each topic's first message: the first few events say it
     topics = {"/tf_static"} | ({"/joint_states", "/tf"} if steps else set())
+    topics |= {"/robot_description"} if description is not None else set()
     topics |= {"/camera/camera_info"} if p.camera_frame is not None and int(duration * 30) else set()
     first: dict[str, str] = {}
     for _, _, topic, _, msgtype in events():
@@ -251,7 +271,7 @@ def _write(robot: Robot, out: Path, faults: tuple[str, ...], duration: float, st
     with Writer(out, version=9, storage_plugin=plugin) as w:
         conns = {}
         for topic, msgtype in first.items():
-            qos = (latched,) if topic == "/tf_static" else ()
+            qos = (latched,) if topic in ("/tf_static", "/robot_description") else ()
             conns[topic] = w.add_connection(topic, msgtype, typestore=ts, offered_qos_profiles=qos)
         for log_ns, _, topic, msg, msgtype in events():
             w.write(conns[topic], log_ns, ts.serialize_cdr(msg, msgtype))

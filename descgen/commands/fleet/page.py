@@ -1,0 +1,109 @@
+"""The fleet report's page (Markdown) and its summary on the terminal, from a roll-up. Every
+name on the page comes from recordings (robots, topics, frames, versions): each is written as
+Markdown text or a table cell (descgen/render/formatting.py), never as markup."""
+
+from __future__ import annotations
+
+from descgen.commands.fleet.rollup import CLASSES, Regression, RollUp
+from descgen.render.formatting import mdcell, mdspan, mdtext
+
+PLOTS = ("failure_rate_by_robot.png", "failures_by_description.png")
+
+
+def _pct(n: int, of: int) -> str:
+    return f"{100 * n / of:.2f}%" if of else "-"
+
+
+def _robot_line(r: Regression) -> str:
+    if r.healthy_until is None:
+        head = f"robot {r.subject} has failed on every day since it was first seen, {r.since}"
+    else:
+        head = f"robot {r.subject} regressed on {r.since} (passing until {r.healthy_until})"
+    now = ", ".join(r.versions)
+    if r.before and r.before != r.versions:
+        head += f", on description {now} (was {', '.join(r.before)})"
+    else:
+        head += f", on description {now}"
+    return head
+
+
+def _version_line(r: Regression) -> str:
+    return (
+        f"description {r.subject} regressed from {', '.join(r.before)} on {r.since}: "
+        f"robots {', '.join(r.versions)} pass on the version before and fail on it"
+    )
+
+
+def text(rollup: RollUp, page: str | None) -> str:
+    """What fleet-report prints: the totals, each regression on one line, where the page is."""
+    lines = [
+        f"{rollup.recordings} recordings, {len({d.robot for d in rollup.days})} robots, "
+        f"{rollup.lookups} lookups, {rollup.failures} failed ({_pct(rollup.failures, rollup.lookups)})"
+    ]
+    lines += [_robot_line(r) for r in rollup.robots]
+    lines += [_version_line(r) for r in rollup.versions]
+    if not rollup.robots and not rollup.versions:
+        lines.append("no robot and no description version regressed")
+    if rollup.unaudited:
+        lines.append(f"{len(rollup.unaudited)} recordings were not audited (see the page)")
+    if page:
+        lines.append(f"wrote {page}")
+    return "".join(line + "\n" for line in lines)
+
+
+def markdown(rollup: RollUp) -> str:
+    days = sorted({d.day for d in rollup.days})
+    span = f"from {days[0]} to {days[-1]}" if days else "no day with a lookup"
+    out = [
+        "# Fleet report",
+        "",
+        mdtext(
+            f"{rollup.recordings} recordings of {len({d.robot for d in rollup.days})} robots, {span}: "
+            f"{rollup.lookups} lookups, {rollup.failures} failed ({_pct(rollup.failures, rollup.lookups)}). "
+            f"A robot-day fails when more than {100 * rollup.threshold:g}% of its lookups failed."
+        ),
+        "",
+        "## Regressions",
+        "",
+    ]
+    if not rollup.robots and not rollup.versions:
+        out += ["No robot and no description version regressed.", ""]
+    for r in rollup.robots:
+        out += [f"- {mdtext(_robot_line(r))}"]
+        for topic, frame, cls, n, first in r.lookups:
+            out.append(f"  - {mdspan(topic)} in {mdspan(frame)}: {n} {mdtext(cls)} since {mdtext(first)} UTC")
+    for r in rollup.versions:
+        out.append(f"- {mdtext(_version_line(r))}")
+    out += [
+        "",
+        "## Failure rate by robot and day",
+        "",
+        f"![failure rate by robot and day]({PLOTS[0]})",
+        "",
+        f"![failed lookups by description version]({PLOTS[1]})",
+        "",
+        "| robot | day | description | recordings | lookups | " + " | ".join(CLASSES) + " | failed |",
+        "|---|---|---|---:|---:|" + "---:|" * len(CLASSES) + "---:|",
+    ]
+    for d in rollup.days:
+        out.append(
+            f"| {mdcell(d.robot)} | {d.day} | {mdcell(', '.join(d.versions))} | {len(d.recordings)} | {d.lookups} | "
+            + " | ".join(str(d.failed[c]) for c in CLASSES)
+            + f" | {_pct(d.failures, d.lookups)} |"
+        )
+    if rollup.unaudited:
+        out += ["", "## Recordings not audited", "", "| recording | why |", "|---|---|"]
+        out += [f"| {mdcell(r)} | {mdcell(w)} |" for r, w in rollup.unaudited]
+    if rollup.unidentified:
+        out += [
+            "",
+            "## Recordings of an unknown robot",
+            "",
+            mdtext(
+                "These hold no /robot_description and no --robot mapping matched them; their lookups are "
+                f"counted under the robot {'(unknown)'}:"
+            ),
+            "",
+        ]
+        out += [f"- {mdtext(r)}" for r in rollup.unidentified]
+    return "\n".join(out) + "\n"
