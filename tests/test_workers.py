@@ -42,3 +42,41 @@ def test_workers_die_on_sigterm_and_let_signals_through() -> None:
 def test_duplicates_and_order() -> None:
     assert workers.map_in_processes(abs, [3, -3, 1, 3], jobs=2) == [3, 3, 1, 3]
     assert workers.map_in_processes(abs, [-2], jobs=4) == [2]  # one item: done here
+
+
+def _pid_or_die(n: int) -> int:
+    """In a worker: its pid, except that item 1 kills its worker (as a segfault would)."""
+    import os
+
+    if n == 1:
+        os.kill(os.getpid(), signal.SIGKILL)
+    return os.getpid()
+
+
+def test_one_crashing_item_is_reported_and_the_rest_keep_their_width() -> None:
+    """30 items on 2 workers, item 1 crashing its worker every time: it alone is reported, and
+    the others are not run one worker each (which made a fleet run serially after one crash)."""
+    got = workers.map_in_processes(_pid_or_die, list(range(30)), jobs=2, crashed=lambda n: -n)
+    assert got[1] == -1 and all(p > 0 for i, p in enumerate(got) if i != 1)
+    # a pool of 2, a pool of 2 for what it left, the few first in line alone: well under 29
+    assert len({p for i, p in enumerate(got) if i != 1}) < 12
+
+
+def _raise_os_error(n: int) -> int:
+    raise FileNotFoundError(f"item {n}")
+
+
+def test_an_error_of_the_work_is_raised_not_taken_for_a_dead_worker() -> None:
+    # an OSError of fn (or of the sink that writes results) was swallowed as a pool that broke
+    with pytest.raises(FileNotFoundError):
+        workers.map_in_processes(_raise_os_error, [1, 2, 3], jobs=2, crashed=lambda n: -n)
+    written: list[int] = []
+
+    def sink(i: int, r: int) -> None:
+        if written:
+            raise OSError(28, "No space left on device")
+        written.append(r)
+
+    with pytest.raises(OSError, match="No space"):
+        workers.each_in_processes(abs, [1, 2, 3, 4], 2, sink, crashed=lambda n: -n)
+    assert len(written) == 1

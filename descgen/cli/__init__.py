@@ -376,11 +376,13 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
         outcomes = audit_fleet(args.bag, args.target, show_progress=show, **run, **options)
     else:
         from descgen.commands.fleet.table import rows, schema, table
+        from descgen.infra.workers import sigterm_raises
         from descgen.write.findings_table import TableFile, check_out, pyarrow_modules
 
         pa, _ = pyarrow_modules()
         check_out(args.out, args.force)
-        with TableFile(args.out, schema(pa), args.force) as out:
+        # SIGTERM (a CI runner's timeout) ends the run as Ctrl-C does: the table's temporary file goes
+        with sigterm_raises(), TableFile(args.out, schema(pa), args.force) as out:
 
             def each(i: int, outcome: Any) -> None:
                 out.write(table(pa, rows(outcome, args.target, mappings)))
@@ -406,26 +408,22 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
 
 
 def _cmd_fleet_report(args: argparse.Namespace) -> int:
-    from descgen.commands.fleet.page import PLOTS, markdown, text
+    from descgen.commands.fleet.page import MARK, PLOTS, markdown, text
     from descgen.commands.fleet.rollup import roll_up
     from descgen.write.fleet_report import check_folder, write_report
 
-    check_folder(args.out, ["README.md", *PLOTS])  # before reading a fleet's tables
+    check_folder(args.out, ["README.md", *PLOTS], MARK)  # before reading a fleet's tables
     rollup = roll_up(args.findings, args.threshold / 100)
     rates: dict[str, list[tuple[str, float]]] = {}
-    by_version: dict[str, dict[str, int]] = {}
     for d in rollup.days:
         rates.setdefault(d.robot, []).append((d.day, d.rate))
-        for v in d.versions:  # a day on two versions counts for both
-            bucket = by_version.setdefault(v, {})
-            for c, n in d.failed.items():
-                bucket[c] = bucket.get(c, 0) + n
-    page = write_report(args.out, markdown(rollup), rates, by_version, PLOTS)
+    page = write_report(args.out, markdown(rollup), rates, rollup.by_version, PLOTS)
     if args.format == "json":
         sys.stdout.write(json.dumps(rollup.as_dict() | {"page": str(page)}, indent=2) + "\n")
     else:
         sys.stdout.write(text(rollup, str(page)))
-    return EXIT_FAILED if rollup.robots or rollup.versions else EXIT_OK
+    # a regression, a recording not audited, or nothing audited at all: not a fleet that passed
+    return EXIT_FAILED if rollup.robots or rollup.versions or rollup.unaudited or not rollup.lookups else EXIT_OK
 
 
 def _cmd_tf_scenario(args: argparse.Namespace) -> int:

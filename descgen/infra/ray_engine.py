@@ -89,7 +89,7 @@ def each_on_ray(
     tick = step or (lambda n: None)
     if address is not None:
         _reachable(address)
-    with _quiet():
+    with _quiet(), contextlib.ExitStack() as stack:
         try:
             ray.init(
                 address=address or "local",  # "local": a new cluster, never one already running here
@@ -107,7 +107,10 @@ def each_on_ray(
                 "needs RAY_AUTH_MODE=token and its token here (ray get-auth-token); or leave --address out",
             ) from None
         pending: list[Any] = []
+        from descgen.infra.workers import sigterm_raises
+
         try:
+            stack.enter_context(sigterm_raises())  # ray.init put its own handler in (exit 1, a C++ dump)
             _same_version(ray)
             task = ray.remote(num_cpus=1, max_retries=RETRIES)(_call)
             fn_ref = ray.put(fn)

@@ -64,12 +64,16 @@ def each_in_processes(
     weight: Callable[[T], int] | None = None,
 ) -> None:
     """``sink(i, fn(items[i]))`` for every item, as each is done (in any order, nothing kept
-    here: a caller that writes each result out holds one at a time).
+    here: a caller that writes each result out holds one at a time). An error of ``fn`` or of
+    ``sink`` ends the work and goes on (a worker's is raised here again).
 
     ``crashed``: what an item whose worker died gives. Without it, what a dead worker left is
-    done again in this process (a worker killed for memory while others ran); with it, each
-    such item runs again alone in a new worker, and one that kills that worker too gives
-    ``crashed(item)``, so one item that crashes its process cannot end the others' work.
+    done again in this process (a worker killed for memory while others ran). With it, what is
+    left goes to a new pool of the same width; when a pool finishes nothing before it breaks, the
+    items first in line (those its workers held) run alone, each in a new worker, and one that
+    kills that worker too gives ``crashed(item)``: one item that crashes its process cannot end
+    the others' work, nor make them run one at a time. With ``crashed``, two or more jobs use
+    workers even on one CPU.
     ``weight``: what ``step`` is given for an item (its bytes, say), 1 without it."""
     tick = step or (lambda n: None)
     finished: set[int] = set()
@@ -80,22 +84,36 @@ def each_in_processes(
         tick(weight(items[i]) if weight else 1)
 
     workers = min(jobs, len(items), _cpus())
-    if workers > 1:
-        _in_workers(fn, items, range(len(items)), workers, done)
-    for i, item in enumerate(items):  # everything, or what the workers could not finish
-        if i in finished:
-            continue
-        if crashed is None or workers <= 1:
+    if crashed is not None and jobs > 1 and len(items) > 1:
+        workers = max(workers, 1)  # isolation is the point, even on one CPU
+    elif workers <= 1:
+        for i, item in enumerate(items):
             done(i, fn(item))
-            continue
-        _in_workers(fn, items, [i], 1, done)  # alone in a new worker
-        if i not in finished:
-            done(i, crashed(item))
+        return
+    left = list(range(len(items)))
+    while left:
+        before = len(finished)
+        _in_workers(fn, items, left, workers, done)
+        left = [i for i in left if i not in finished]
+        if not left:
+            return
+        if crashed is None:  # a worker killed for memory: the rest here, one by one
+            for i in left:
+                done(i, fn(items[i]))
+            return
+        if len(finished) == before:  # the crash is among those first in line
+            suspects, left = left[: workers + 1], left[workers + 1 :]
+            for i in suspects:
+                _in_workers(fn, items, [i], 1, done)  # alone in a new worker
+                if i not in finished:
+                    done(i, crashed(items[i]))
 
 
 def _in_workers(
     fn: Callable[[T], R], items: Sequence[T], chosen: Iterable[int], workers: int, done: Callable[[int, R], None]
 ) -> None:
+    """The chosen items on a new pool of ``workers``, until all are done or the pool breaks (a
+    worker died, or none could start): then it returns, and the caller sees what is left."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
@@ -103,7 +121,7 @@ def _in_workers(
     pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start, initargs=(os.getpid(),))
     futures = {}
     try:
-        with _sigterm_raises():
+        with sigterm_raises():
             try:
                 # the workers are forked, and the pool's threads started, by the submits: a
                 # signal handled in the middle of that would be lost in a fork hook or leave a
@@ -112,10 +130,14 @@ def _in_workers(
                 with interruptions.held():
                     for i in chosen:
                         futures[pool.submit(fn, items[i])] = i
-                for future in as_completed(futures):
-                    done(futures[future], future.result())
             except (BrokenProcessPool, OSError):
-                pass  # a worker died or could not start: the caller does the rest
+                return  # a worker could not start (too many open files): the caller does the rest
+            for future in as_completed(futures):
+                try:
+                    result = future.result()  # fn's own error, an OSError included, goes on from here
+                except BrokenProcessPool:
+                    return  # a worker died: the caller does the rest
+                done(futures[future], result)
     except BaseException:  # Ctrl-C, SIGTERM, or fn's own error: drop what has not started
         for future in futures:
             future.cancel()
@@ -177,7 +199,7 @@ def _die_with(parent: int) -> None:
 
 
 @contextmanager
-def _sigterm_raises() -> Iterator[None]:
+def sigterm_raises() -> Iterator[None]:
     """SIGTERM to this process becomes SystemExit(143) while workers run, so they are
     terminated with it instead of being left waiting on a pipe (main thread only)."""
     if threading.current_thread() is not threading.main_thread():

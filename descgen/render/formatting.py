@@ -178,7 +178,8 @@ def xacro_document(xml: str) -> str:
 # input is text or code, never markup: no raw HTML, no link or image, no emphasis, no block of its
 # own, and it cannot leave the code span, fence or table cell it is written into. Plain names
 # (nearly every one) print as they always did.
-_MD_ALWAYS = frozenset("\\`*[]<>&|~")  # inline markup anywhere in a line: escaped with a backslash
+# inline markup anywhere in a line: escaped with a backslash ($: GitHub renders $...$ as math)
+_MD_ALWAYS = frozenset("\\`*[]<>&|~$")
 # what makes a line a heading, list item, thematic break or setext underline (a quote, ``>``, and
 # fences, ``` and ~~~, are escaped anywhere): group 1 ends at the character to escape
 _MD_BLOCK_START = re.compile(r"(#|[-+]|\d{1,9}[.)])(?=[ \t]|$)|(=)+[ \t]*$|(-)[ \t]*(?:-[ \t]*){2,}$")
@@ -187,7 +188,7 @@ _MD_DEST_SAFE = "/._-~"  # besides letters and digits: what a link destination k
 
 def mdtext(text: object) -> str:
     """Text as Markdown text, on one line (whitespace runs become one space): every character
-    that could start markup escaped (``\\ ` * [ ] < > & | ~``, and ``_`` unless inside a word,
+    that could start markup escaped (``\\ ` * [ ] < > & | ~ $``, and ``_`` unless inside a word,
     where CommonMark gives it no meaning), and a leading ``#``, ``>``, ``+``, ``-``, ``=`` or
     ``1.`` escaped, so the text starts no block even at the start of a line."""
     s = visible(" ".join(str(text).split()))
@@ -246,7 +247,7 @@ def mddest(target: str) -> str:
 def mdcell(text: object) -> str:
     """Text safe in a Markdown table cell: one line, pipes and markup escaped."""
     s = visible(" ".join(str(text).split()))
-    for ch in "\\|`*_[]<>&~":
+    for ch in "\\|`*_[]<>&~$":
         s = s.replace(ch, "\\" + ch)
     return _no_block(s)  # a cell is inline, but templates write the same text after "- " too
 

@@ -77,8 +77,12 @@ class TableFile:
         return self
 
     def write(self, table: Any) -> None:
-        if table.num_rows:
+        if not table.num_rows:
+            return
+        try:
             self.writer.write_table(table)
+        except OSError as exc:  # disk full, a file too large
+            raise _refuse(self.path, f"cannot write {self.path}: {exc.strerror or exc}") from None
 
     def __exit__(self, kind: object, exc: object, tb: object) -> None:
         assert self.tmp is not None

@@ -5,9 +5,11 @@ Markdown text or a table cell (descgen/render/formatting.py), never as markup.""
 from __future__ import annotations
 
 from descgen.commands.fleet.rollup import CLASSES, Regression, RollUp
+from descgen.commands.tf.bagaudit import shown
 from descgen.render.formatting import mdcell, mdspan, mdtext
 
 PLOTS = ("failure_rate_by_robot.png", "failures_by_description.png")
+MARK = "<!-- written by descgen fleet-report -->"  # a folder whose README.md starts so is ours to rewrite
 
 
 def _pct(n: int, of: int) -> str:
@@ -40,12 +42,17 @@ def text(rollup: RollUp, page: str | None) -> str:
         f"{rollup.recordings} recordings, {len({d.robot for d in rollup.days})} robots, "
         f"{rollup.lookups} lookups, {rollup.failures} failed ({_pct(rollup.failures, rollup.lookups)})"
     ]
-    lines += [_robot_line(r) for r in rollup.robots]
-    lines += [_version_line(r) for r in rollup.versions]
-    if not rollup.robots and not rollup.versions:
+    # names come from recordings: escaped, as tf-audit prints them (no control character reaches the terminal)
+    lines += [shown(_robot_line(r), 400) for r in rollup.robots]
+    lines += [shown(_version_line(r), 400) for r in rollup.versions]
+    if not rollup.lookups:
+        lines.append("the tables hold no audited lookup")
+    elif not rollup.robots and not rollup.versions:
         lines.append("no robot and no description version regressed")
     if rollup.unaudited:
         lines.append(f"{len(rollup.unaudited)} recordings were not audited (see the page)")
+    if rollup.repeated:
+        lines.append(f"{len(rollup.repeated)} recordings are in more than one table: counted once (see the page)")
     if page:
         lines.append(f"wrote {page}")
     return "".join(line + "\n" for line in lines)
@@ -55,6 +62,8 @@ def markdown(rollup: RollUp) -> str:
     days = sorted({d.day for d in rollup.days})
     span = f"from {days[0]} to {days[-1]}" if days else "no day with a lookup"
     out = [
+        MARK,
+        "",
         "# Fleet report",
         "",
         mdtext(
@@ -106,4 +115,19 @@ def markdown(rollup: RollUp) -> str:
             "",
         ]
         out += [f"- {mdtext(r)}" for r in rollup.unidentified]
+    if rollup.models:
+        out += [
+            "",
+            "## Robots named by their URDF",
+            "",
+            mdtext(
+                "These names are a URDF's <robot name>, the model: every unit of the model is one robot here, "
+                "and a regression of one unit is diluted by the others. Name the units with tf-audit --robot:"
+            ),
+            "",
+        ]
+        out += [f"- {mdtext(m)}" for m in rollup.models]
+    if rollup.repeated:
+        out += ["", "## Recordings in more than one table", "", mdtext("Counted once, from the first table:"), ""]
+        out += [f"- {mdtext(r)}" for r in rollup.repeated]
     return "\n".join(out) + "\n"

@@ -6,8 +6,11 @@ lookup rows. A day is the UTC date of a summary row's first lookup. A robot-day 
 its share of failed lookups is above ``threshold`` (default 0: any failed lookup). A robot has
 regressed when it is failing on its last day and on every day back to ``since``, and had a
 passing day before that; one failing on every day of the table is "failing since it was first
-seen". A description version has regressed when a robot ran the version before it on a
-passing day and fails on it; it is failing since its first failing robot-day.
+seen"; a recording of no known robot is a robot of its own. A description version has
+regressed when a robot passed on the version before it (its recordings on that version since
+the last change) and failed from its first recording on the new one, even when the version
+changed in the middle of a day; since the earliest such recording's day. A recording given in
+two tables counts once.
 """
 
 from __future__ import annotations
@@ -66,6 +69,9 @@ class RollUp:
     robots: list[Regression]
     versions: list[Regression]
     threshold: float
+    by_version: dict[str, dict[str, int]]  # version -> failed lookups of each class
+    repeated: list[str]  # recordings in more than one table, counted once
+    models: list[str]  # robots named by their URDF alone: every unit of that model is one robot here
 
     @property
     def lookups(self) -> int:
@@ -109,11 +115,9 @@ class RollUp:
             "regressed_descriptions": [reg(r) for r in self.versions],
             "unaudited": [{"recording": r, "why": w} for r, w in self.unaudited],
             "unidentified": self.unidentified,
+            "repeated": self.repeated,
+            "named_by_model": self.models,
         }
-
-
-def _day(ns: int) -> str:
-    return datetime.fromtimestamp(ns / 1e9, UTC).strftime("%Y-%m-%d")
 
 
 def _bad(path: Path, message: str) -> InputError:
@@ -123,11 +127,11 @@ def _bad(path: Path, message: str) -> InputError:
 
 
 SUMMARY_COLUMNS = ["kind", "recording", "robot", "description", "identity", "time", "lookups", *CLASSES, "detail"]
-LOOKUP_COLUMNS = ["robot", "description", "topic", "frame", "outcome", "time"]
+LOOKUP_COLUMNS = ["recording", "robot", "description", "topic", "frame", "outcome", "time"]
 
 
-def _read(path: Path, columns: list[str], kind: str | None) -> Any:
-    """The columns of one findings table (rows of ``kind`` only), or BAG020."""
+def _read(path: Path, columns: list[str], kinds: tuple[str, ...]) -> Any:
+    """The columns of one findings table (rows of those ``kinds`` only), or BAG020."""
     from descgen.commands.fleet.table import FORMAT
     from descgen.write.findings_table import pyarrow_modules
 
@@ -136,8 +140,7 @@ def _read(path: Path, columns: list[str], kind: str | None) -> Any:
         meta = pq.read_schema(path).metadata or {}
         if meta.get(b"format") != FORMAT.encode():
             raise _bad(path, f"is not a tf-audit findings table (its format is not {FORMAT})")
-        filters = [("kind", "=", kind)] if kind else None
-        tbl = pq.read_table(path, columns=columns, filters=filters)
+        tbl = pq.read_table(path, columns=columns, filters=[("kind", "in", list(kinds))])
         # nanosecond times as integers: Python's datetime holds microseconds
         return tbl.cast(_with_int_times(tbl.schema))
     except InputError:
@@ -152,47 +155,102 @@ def _with_int_times(schema: Any) -> Any:
     return pa.schema([(f.name, pa.int64() if pa.types.is_timestamp(f.type) else f.type) for f in schema])
 
 
+@dataclass
+class _Row:
+    """One summary row, as the roll-up needs it."""
+
+    robot: str
+    version: str
+    time: int | None
+    lookups: int
+    failed: dict[str, int]
+    recording: str
+
+    @property
+    def rate(self) -> float:
+        return sum(self.failed.values()) / self.lookups if self.lookups else 0.0
+
+
 def roll_up(paths: list[Path], threshold: float = 0.0) -> RollUp:
     days: dict[tuple[str, str], Day] = {}
-    recordings: set[str] = set()
+    rows: list[_Row] = []
+    seen: dict[str, int] = {}  # recording -> the table it was taken from (its place in the list)
+    repeated: set[str] = set()
     unaudited: list[tuple[str, str]] = []
     unidentified: set[str] = set()
-    for path in paths:
-        for row in _read(path, SUMMARY_COLUMNS, None).to_pylist():
-            recordings.add(row["recording"])
+    models: set[str] = set()
+    for k, path in enumerate(paths):
+        table = _read(path, SUMMARY_COLUMNS, ("summary", "unaudited")).to_pylist()
+        for row in table:
+            rec = row["recording"] or ""
+            if seen.setdefault(rec, k) != k:  # the same recording in two tables counts once
+                repeated.add(rec)
+                continue
             if row["identity"] == "none":
-                unidentified.add(row["recording"])
+                unidentified.add(rec)
             if row["kind"] == "unaudited":
-                unaudited.append((row["recording"], row["detail"] or ""))
+                unaudited.append((rec, row["detail"] or ""))
                 continue
-            if row["kind"] != "summary":
-                continue
-            robot = row["robot"] or UNKNOWN
-            day = _day(_ns(row["time"]))
+            if row["identity"] == "/robot_description":
+                models.add(row["robot"] or UNKNOWN)
+            # a recording of an unknown robot is a robot of its own: unknown units are not one unit
+            robot = row["robot"] or f"{UNKNOWN} {rec}"
+            r = _Row(robot, row["description"] or UNKNOWN, _time(row["time"]), int(row["lookups"] or 0),
+                     {c: int(row[c] or 0) for c in CLASSES}, rec)  # fmt: skip
+            rows.append(r)
+            day = _day(r.time)
             d = days.get((robot, day))
             if d is None:
                 d = days[(robot, day)] = Day(robot, day, [])
-            version = row["description"] or UNKNOWN
-            if version not in d.versions:
-                d.versions.append(version)
-            d.lookups += int(row["lookups"] or 0)
+            if r.version not in d.versions:
+                d.versions.append(r.version)
+            d.lookups += r.lookups
             for c in CLASSES:
-                d.failed[c] += int(row[c] or 0)
-            d.recordings.add(row["recording"])
+                d.failed[c] += r.failed[c]
+            d.recordings.add(rec)
+    rows.sort(key=lambda r: (r.robot, r.time if r.time is not None else 2**63))
     ordered = sorted(days.values(), key=lambda d: (d.robot, d.day))
-    robots = _robots(ordered, threshold)
-    versions = _versions(ordered, threshold)
+    robots = _robots(ordered, rows, threshold)
+    versions = _versions(rows, threshold)
     if robots:
-        _failing_lookups(paths, robots)
-    return RollUp(ordered, len(recordings), sorted(unaudited), sorted(unidentified), robots, versions, threshold)
+        _failing_lookups(paths, robots, seen)
+    by_version: dict[str, dict[str, int]] = {}
+    for r in rows:
+        bucket = by_version.setdefault(r.version, dict.fromkeys(CLASSES, 0))
+        for c in CLASSES:
+            bucket[c] += r.failed[c]
+    return RollUp(
+        ordered,
+        len(seen),
+        sorted(unaudited),
+        sorted(unidentified),
+        robots,
+        versions,
+        threshold,
+        by_version,
+        sorted(repeated),
+        sorted(models),
+    )
 
 
-def _ns(value: Any) -> int:
-    """A time column's value (ns since the epoch, as ``_read`` casts it)."""
-    return int(value)
+NO_DAY = "(no time)"
 
 
-def _robots(days: list[Day], threshold: float) -> list[Regression]:
+def _time(value: Any) -> int | None:
+    return None if value is None else int(value)
+
+
+def _day(ns: int | None) -> str:
+    """The UTC date of a time, or NO_DAY for none or one no calendar holds."""
+    if ns is None:
+        return NO_DAY
+    try:
+        return datetime.fromtimestamp(ns / 1e9, UTC).strftime("%Y-%m-%d")
+    except (OverflowError, OSError, ValueError):
+        return NO_DAY
+
+
+def _robots(days: list[Day], rows: list[_Row], threshold: float) -> list[Regression]:
     out = []
     by_robot: dict[str, list[Day]] = defaultdict(list)
     for d in days:
@@ -204,64 +262,96 @@ def _robots(days: list[Day], threshold: float) -> list[Regression]:
         while k > 0 and seq[k - 1].rate > threshold:
             k -= 1
         healthy = seq[k - 1] if k > 0 else None
+        since = seq[k].day
+        later = [r for r in rows if r.robot == robot and _day(r.time) >= since]
+        failing = [r.version for r in later if r.rate > threshold] or [r.version for r in later]
         out.append(
             Regression(
                 robot,
-                seq[k].day,
+                since,
                 healthy.day if healthy else None,
-                list(seq[k].versions),
+                list(dict.fromkeys(failing)),
                 list(healthy.versions) if healthy else [],
             )
         )
     return out
 
 
-def _versions(days: list[Day], threshold: float) -> list[Regression]:
-    """A version whose robot passed on the version before it and fails on it."""
+def _versions(rows: list[_Row], threshold: float) -> list[Regression]:
+    """A version whose robot passed on the version before it and failed from its first recording
+    on it: each robot's summary rows in time order, consecutive rows of one version taken
+    together (a version changed in the middle of a day is compared too). A robot that passed on
+    the new version first and failed later has regressed, but not with the version."""
     found: dict[str, Regression] = {}
-    by_robot: dict[str, list[Day]] = defaultdict(list)
-    for d in days:
-        by_robot[d.robot].append(d)
-    for robot, seq in by_robot.items():
-        for before, after in itertools.pairwise(seq):
-            if len(before.versions) != 1 or len(after.versions) != 1 or before.versions == after.versions:
-                continue  # a version change between two days, each on one version
-            old, new = before.versions[0], after.versions[0]
-            if before.rate <= threshold < after.rate and new != UNKNOWN:
-                r = found.setdefault(new, Regression(new, after.day, before.day, [], []))
-                r.since = min(r.since, after.day)
-                if robot not in r.versions:
-                    r.versions.append(robot)
-                if old not in r.before:
-                    r.before.append(old)
+    runs: list[tuple[str, str, list[_Row]]] = []  # (robot, version, rows)
+    for r in rows:
+        if runs and runs[-1][0] == r.robot and runs[-1][1] == r.version:
+            runs[-1][2].append(r)
+        else:
+            runs.append((r.robot, r.version, [r]))
+    for (robot_a, old, before), (robot_b, new, after) in itertools.pairwise(runs):
+        if robot_a != robot_b or UNKNOWN in (old, new):
+            continue
+        first = [r for r in after if r.recording == after[0].recording]  # its first recording on the version
+        if _rate(before) <= threshold < _rate(first):
+            since, until = _day(after[0].time), _day(before[-1].time)
+            reg = found.get(new)
+            if reg is None or since < reg.since:  # the earliest transition names the dates
+                keep = (reg.versions, reg.before) if reg else ([], [])
+                found[new] = reg = Regression(new, since, until, *keep)
+            if robot_b not in reg.versions:
+                reg.versions.append(robot_b)
+            if old not in reg.before:
+                reg.before.append(old)
     return sorted(found.values(), key=lambda r: (r.since, r.subject))
 
 
-def _failing_lookups(paths: list[Path], robots: list[Regression]) -> None:
+def _rate(rows: list[_Row]) -> float:
+    n = sum(r.lookups for r in rows)
+    return sum(sum(r.failed.values()) for r in rows) / n if n else 0.0
+
+
+def _failing_lookups(paths: list[Path], robots: list[Regression], seen: dict[str, int]) -> None:
     """For each regressed robot, the lookups that fail since the day it started: topic, frame,
     class, how many and the first. Counted by Arrow over the lookup rows (a fleet's tables hold
     millions), never as Python rows."""
     import pyarrow.compute as pc
 
     counts: dict[tuple[str, str, str, str], list[int]] = {}
-    for path in paths:
-        tbl = _read(path, LOOKUP_COLUMNS, "lookup")
+    for k, path in enumerate(paths):
+        tbl = _read(path, LOOKUP_COLUMNS, ("lookup",))
+        mine_here = pc.is_in(tbl["recording"], value_set=_strings([r for r, at in seen.items() if at == k]))
         for r in robots:
+            if r.since == NO_DAY:
+                continue
             start = int(datetime.strptime(r.since, "%Y-%m-%d").replace(tzinfo=UTC).timestamp()) * 1_000_000_000
-            mine = pc.is_null(tbl["robot"]) if r.subject == UNKNOWN else pc.equal(tbl["robot"], r.subject)
-            picked = tbl.filter(pc.and_(mine, pc.greater_equal(tbl["time"], start)))
+            if r.subject.startswith(UNKNOWN + " "):  # an unknown robot: its one recording
+                mine = pc.and_(pc.is_null(tbl["robot"]), pc.equal(tbl["recording"], r.subject[len(UNKNOWN) + 1 :]))
+            else:
+                mine = pc.equal(tbl["robot"], r.subject)
+            picked = tbl.filter(pc.and_(pc.and_(mine, mine_here), pc.greater_equal(tbl["time"], start)))
             if not picked.num_rows:
                 continue
             grouped = picked.group_by(["topic", "frame", "outcome"]).aggregate([("time", "count"), ("time", "min")])
             for row in grouped.to_pylist():
                 key = (r.subject, row["topic"] or "", row["frame"] or "", row["outcome"] or "")
-                c = counts.setdefault(key, [0, _ns(row["time_min"])])
+                c = counts.setdefault(key, [0, int(row["time_min"])])
                 c[0] += int(row["time_count"])
-                c[1] = min(c[1], _ns(row["time_min"]))
+                c[1] = min(c[1], int(row["time_min"]))
     for r in robots:
         rows = [(k[1], k[2], k[3], v[0], v[1]) for k, v in counts.items() if k[0] == r.subject]
         rows.sort(key=lambda x: (-x[3], x[4]))
-        r.lookups = [
-            (t, f, o, n, datetime.fromtimestamp(first / 1e9, UTC).strftime("%Y-%m-%d %H:%M:%S"))
-            for t, f, o, n, first in rows[:TOP_LOOKUPS]
-        ]
+        r.lookups = [(t, f, o, n, _moment(first)) for t, f, o, n, first in rows[:TOP_LOOKUPS]]
+
+
+def _strings(values: list[str]) -> Any:
+    import pyarrow as pa
+
+    return pa.array(values, type=pa.string())
+
+
+def _moment(ns: int) -> str:
+    try:
+        return datetime.fromtimestamp(ns / 1e9, UTC).strftime("%Y-%m-%d %H:%M:%S")
+    except (OverflowError, OSError, ValueError):
+        return NO_DAY

@@ -45,15 +45,19 @@ TaskResult = tuple[Report | None, tuple[Finding, ...]]
 
 def run_task(task: Task, kwargs: dict[str, Any]) -> TaskResult:
     """One recording, or one window of it; input errors returned as data (they cross a
-    process or network boundary)."""
+    process or network boundary), and any other error as that recording's failure (BAG017),
+    the same on every engine."""
     try:
         return audit(task.path, window=task.window, **kwargs), ()
     except InputError as exc:
         return None, exc.findings
+    except Exception as exc:  # a bug, or a library's error nothing above maps: this recording's, not the run's
+        return _crashed(task, f"the audit raised {type(exc).__name__}: {' '.join(str(exc).split())[:300]}")
 
 
 def _crashed(task: Task, why: str = "its worker process died (killed, or a crash in a library)") -> TaskResult:
-    where = "" if task.window is None else f" (the window from {task.window.start / 1e9:.3f} s)"
+    w = task.window
+    where = "" if w is None or w.start is None else f" (the window from {w.start / 1e9:.3f} s)"
     return None, (
         BAG017.finding(
             f"the audit of this recording{where} crashed: {why}",
@@ -88,39 +92,75 @@ def audit_fleet(
     (it may take ``outcome.report.failures`` and empty it). ``kwargs`` go to ``bagaudit.audit``."""
     kwargs["target"] = target
     outcomes = [Outcome(p, None, bytes=_size(Path(p))) for p in paths]
+    # on a cluster a task runs in another working directory: it gets the absolute path, and its
+    # findings name the recording as given
+    where = [Path(p).absolute() if engine == "ray" else Path(p) for p in paths]
     tasks: list[Task] = []
-    planned: dict[int, int] = {}
     for i, p in enumerate(paths):
         try:
             cut = _plan(Path(p), window_ns, kwargs)
         except InputError as exc:
             outcomes[i].findings = exc.findings
+            if each:
+                each(i, outcomes[i])
             continue
-        planned[i] = len(cut)
         outcomes[i].windows = len(cut)
-        tasks.extend(Task(i, Path(p), w) for w in cut)
+        tasks.extend(Task(i, where[i], w) for w in cut)
+    again: list[int] = []  # recordings whose windows disagreed: audited again, whole
+
+    def finished(i: int, got: list[tuple[Task, TaskResult]]) -> None:
+        if _finish(outcomes[i], paths[i], sorted(got, key=_window_start), kwargs):
+            if each:
+                each(i, outcomes[i])
+        else:
+            again.append(i)
+
+    run = partial(run_task, kwargs=kwargs)
+    _dispatch(tasks, finished, run, engine, jobs, address, show_progress, outcomes, kwargs)
+    if again:
+        for i in again:
+            outcomes[i].note = (
+                f"audited in one pass: its {outcomes[i].windows} windows did not see what one pass sees "
+                "(a transform older than the horizon was still in the buffer at a boundary)"
+            )
+            outcomes[i].windows = 1
+        whole = [Task(i, where[i], None) for i in again]
+        _dispatch(whole, finished, run, engine, jobs, address, show_progress, outcomes, kwargs)
+    return outcomes
+
+
+def _dispatch(
+    tasks: list[Task],
+    finished: Callable[[int, list[tuple[Task, TaskResult]]], None],
+    run: Callable[[Task], TaskResult],
+    engine: str,
+    jobs: int,
+    address: str | None,
+    show_progress: bool,
+    outcomes: list[Outcome],
+    kwargs: dict[str, Any],
+) -> None:
+    """Run the tasks on the engine; ``finished(i, parts)`` when every task of recording i is done."""
+    planned: dict[int, int] = {}
+    for t in tasks:
+        planned[t.recording] = planned.get(t.recording, 0) + 1
     parts: dict[int, list[tuple[Task, TaskResult]]] = {i: [] for i in planned}
-    done: list[int] = [i for i in range(len(paths)) if i not in planned]
-    for i in done:
-        if each:
-            each(i, outcomes[i])
 
     def sink(k: int, result: TaskResult) -> None:
         task = tasks[k]
         got = parts[task.recording]
         got.append((task, result))
         if len(got) == planned[task.recording]:
-            _finish(outcomes[task.recording], sorted(got, key=_window_start), kwargs)
             del parts[task.recording]
-            if each:
-                each(task.recording, outcomes[task.recording])
+            finished(task.recording, got)
 
-    run = partial(run_task, kwargs=kwargs)
+    if not tasks:
+        return
     if engine == "local" and (jobs <= 1 or len(tasks) <= 1):
         for k, task in enumerate(tasks):  # in this process: each recording's messages on the terminal
             sink(k, run_task(task, kwargs | {"show_progress": show_progress}))
-        return outcomes
-    sizes = {i: o.bytes // max(1, o.windows) for i, o in enumerate(outcomes)}
+        return
+    sizes = {i: outcomes[i].bytes // max(1, planned[i]) for i in planned}
 
     def weight(task: Task) -> int:
         return sizes[task.recording]
@@ -135,12 +175,11 @@ def audit_fleet(
             from descgen.infra.workers import each_in_processes
 
             each_in_processes(run, tasks, jobs, sink, step, _crashed, weight)
-    return outcomes
 
 
 def _window_start(part: tuple[Task, TaskResult]) -> int:
     w = part[0].window
-    return -1 if w is None else w.start
+    return -(2**63) if w is None or w.start is None else w.start
 
 
 def _plan(path: Path, window_ns: int | None, kwargs: dict[str, Any]) -> list[Window | None]:
@@ -151,30 +190,32 @@ def _plan(path: Path, window_ns: int | None, kwargs: dict[str, Any]) -> list[Win
     return windows.plan(start, end, max(window_ns, windows.MIN_WINDOW_NS), horizon)
 
 
-def _finish(outcome: Outcome, got: list[tuple[Task, TaskResult]], kwargs: dict[str, Any]) -> None:
-    """Join a recording's windows, and run the checks of a whole recording."""
-    errors = [f for _, (_, found) in got for f in found]
+def _finish(outcome: Outcome, given: str, got: list[tuple[Task, TaskResult]], kwargs: dict[str, Any]) -> bool:
+    """Join a recording's windows and run the checks of a whole recording; False when the
+    windows disagree at a boundary (the recording is then audited again, whole)."""
+    errors = [_as_given(f, got[0][0].path, given) for _, (_, found) in got for f in found]
     if errors:
         outcome.findings = (errors[0],)  # the windows of an unreadable recording say the same
-        return
+        return True
     reports = [rep for _, (rep, _) in got if rep is not None]
-    task = got[0][0]
-    if len(reports) == 1:
-        report: Report | None = reports[0]
-    else:
-        report = windows.join(reports, int(kwargs.get("examples", 5)))
-        if report is None:  # a transform older than the horizon was still held at a boundary
-            outcome.note = (
-                f"audited in one pass: its {len(reports)} windows did not see what one pass sees "
-                "(a transform older than the horizon was still in the buffer at a boundary)"
-            )
-            report, found = run_task(Task(task.recording, task.path, None), kwargs)
-            outcome.report, outcome.findings = report, found
-            return
-    assert report is not None
+    report = reports[0] if len(reports) == 1 else windows.join(reports, int(kwargs.get("examples", 5)))
+    if report is None:  # a transform older than the horizon was still held at a boundary
+        return False
     try:
-        check_lookups(task.path, str(kwargs["target"]), tuple(kwargs.get("topics", ())), report.lookups, report.frames)
+        check_lookups(
+            Path(given), str(kwargs["target"]), tuple(kwargs.get("topics", ())), report.lookups, report.frames
+        )
     except InputError as exc:
         outcome.findings = exc.findings
-        return
+        return True
     outcome.report = report
+    return True
+
+
+def _as_given(f: Finding, sent: Path, given: str) -> Finding:
+    """A task's finding about the absolute path it was sent, about the path as given."""
+    if f.where.file != str(sent) or str(sent) == given:
+        return f
+    from dataclasses import replace
+
+    return replace(f, where=replace(f.where, file=given))

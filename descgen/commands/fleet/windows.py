@@ -18,19 +18,20 @@ from collections import Counter
 from descgen.commands.tf.bagaudit import Report, Window
 
 MIN_WINDOW_NS = 1_000_000_000  # a window shorter than a second is all horizon
+MAX_WINDOWS = 10_000  # a recording's metadata may claim any span: the windows widen instead
 
 
 def plan(start_ns: int, end_ns: int, length_ns: int, horizon_ns: int) -> list[Window | None]:
-    """The windows of a recording logged from ``start_ns`` to ``end_ns``: [None] (one pass) when
-    it is no longer than one window."""
-    if end_ns - start_ns <= length_ns:
+    """The windows of a recording whose metadata says it was logged from ``start_ns`` to
+    ``end_ns``: [None] (one pass) when it is no longer than one window. The first window is open
+    to the left and the last to the right, so a message outside what the metadata says is still
+    looked up, once."""
+    span = end_ns - start_ns
+    if span <= length_ns:
         return [None]
-    cuts = list(range(start_ns, end_ns, length_ns))[1:]
-    bounds = [start_ns, *cuts]
-    return [
-        Window(a, b, horizon_ns)
-        for a, b in itertools.zip_longest(bounds, cuts)  # the last runs to the end
-    ]
+    length = max(length_ns, -(-span // MAX_WINDOWS))
+    cuts: list[int | None] = list(range(start_ns + length, end_ns, length))
+    return [Window(a, b, horizon_ns) for a, b in itertools.pairwise([None, *cuts, None])]
 
 
 def join(parts: list[Report], examples: int) -> Report | None:

@@ -139,6 +139,13 @@ MAX_WAIT_S = 3600.0  # --wait and --max-age: beyond an hour the answer is the sa
 MAX_METADATA = 4 * 1024 * 1024  # a rosbag2 metadata.yaml is kilobytes, even for long recordings
 
 
+MAX_ROW_TEXT = 1000  # characters of a frame name in a failure row (tf2's words: four times that)
+
+
+def _clip(text: str, limit: int) -> str:
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def shown(name: str, limit: int = 80) -> str:
     """A name from a recording as it is printed: escaped (no control characters reach the
     terminal) and shortened."""
@@ -157,6 +164,15 @@ def _one_line(exc: BaseException) -> str:
 
 def _bag_folder(path: Path) -> Path:
     """The rosbag2 folder ``path`` names, checked for type and size before rosbags reads it."""
+    try:
+        return _checked_folder(path)
+    except OSError as exc:  # a name too long, a folder without permission, a loop of links
+        raise _unusable(
+            BAG014, path, f"cannot be read: {exc.strerror or exc}", "give a rosbag2 folder you can read"
+        ) from None
+
+
+def _checked_folder(path: Path) -> Path:
     hint = "give a rosbag2 folder (metadata.yaml with .mcap or .db3)"
     if path.is_file() and (path.parent / "metadata.yaml").is_file():
         path = path.parent  # the storage file or metadata.yaml inside a recording
@@ -205,7 +221,7 @@ class Window:
     ends is kept, so the slices of a recording are known to have given what one pass gives
     (descgen/commands/fleet/windows.py)."""
 
-    start: int
+    start: int | None  # None: from the beginning of the recording (whatever its metadata says)
     stop: int | None  # None: to the end of the recording
     horizon: int
 
@@ -287,8 +303,17 @@ class _Replay:
             report.results.append((m.topic, m.log_ns, outcome))
         if outcome == "ok":
             return
-        if self.keep_failures:
-            report.failures.append(Failure(m.topic, m.log_ns, m.stamp, m.frame, outcome, detail, m.version))
+        if self.keep_failures:  # a row per failure: its frame name and tf2's words bounded
+            row = Failure(
+                m.topic,
+                m.log_ns,
+                m.stamp,
+                _clip(m.frame, MAX_ROW_TEXT),
+                outcome,
+                _clip(detail, 4 * MAX_ROW_TEXT),
+                m.version,
+            )
+            report.failures.append(row)
         if self.shown_examples[outcome] < self.examples:
             self.shown_examples[outcome] += 1
             report.examples.append(
@@ -349,10 +374,12 @@ def audit(
         start = stop = None
         first, last = -(2**63), None  # sensor messages logged in [first, last) are looked up
         if window is not None:
-            first, last = window.start, window.stop
-            start = window.start - window.horizon
+            last = window.stop
             # the last message's deadline is stop - 1 + wait, and rosbags' stop is exclusive
             stop = None if window.stop is None else window.stop + wait_ns
+        if window is not None and window.start is not None:
+            first = window.start
+            start = window.start - window.horizon
             static = [c for c in tf_conns if c.topic == "/tf_static"]
             # static transforms are timeless: all of them before the window (no connection at all
             # must read nothing: rosbags reads every connection when given none)
