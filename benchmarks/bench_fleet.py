@@ -85,17 +85,27 @@ def main() -> None:
             ("local processes", ["--jobs", str(cores)]),
             ("a local Ray cluster", ["--engine", "ray", "--jobs", str(cores)]),
         ):
-            for unit, work in (("recordings/s", count), ("MB/s", mb)):
-                harness.compare(
-                    f"tf-audit of {count} recordings on {name} ({cores} cores), {unit}",
-                    lambda e=extra: harness.process([*audit, *e], env=env, ok=(0, 1)),  # type: ignore[misc]
-                    anchor,
+            measure = f"tf-audit of {count} recordings on {name} ({cores} cores)"
+            result = harness.compare(
+                f"{measure}, recordings/s",
+                lambda e=extra: harness.process([*audit, *e], env=env, ok=(0, 1)),  # type: ignore[misc]
+                anchor,
+                kind="cold",
+                anchor_name="rosbags read + decode of the same topics, one stream",
+                work=count,
+                unit="recordings/s",
+                clock="wall",
+                pairs=3,
+            )
+            if result.descgen:  # the same runs, as MB/s
+                harness.report(
+                    f"{measure}, MB/s",
+                    result,
                     kind="cold",
                     anchor_name="rosbags read + decode of the same topics, one stream",
-                    work=work,
-                    unit=unit,
+                    work=mb,
+                    unit="MB/s",
                     clock="wall",
-                    pairs=3,
                 )
         one = harness.process([*audit, "--jobs", "1"], env=env, ok=(0, 1))
         per = one.cpu / count

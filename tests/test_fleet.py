@@ -458,3 +458,130 @@ def test_address_joins_a_running_cluster(
                 "--address", address, *MAPPING, "--format", "json", cwd=some[0].parent)  # fmt: skip
     assert r.returncode == 1, r.stderr
     assert json.loads(r.stdout)["recordings"] == {p.name: local["recordings"][str(p)] for p in some}
+
+
+# --------------------------------------------------------------------------- what the reviews found
+
+
+def _table(path: Path, rows: list[dict[str, Any]]) -> Path:
+    """A findings table of hand-written summary rows (the schema is tf-audit's own)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from descgen.commands.fleet.table import COLUMNS, schema
+
+    cols = {name: [r.get(name) for r in rows] for name, _ in COLUMNS}
+    pq.write_table(pa.Table.from_pydict(cols, schema=schema(pa)), path)
+    return path
+
+
+def _summary(robot: str | None, version: str, hour: float, lookups: int, stale: int, rec: str) -> dict[str, Any]:
+    t = DAY1 + int(hour * 3600 * NS)
+    return {
+        "kind": "summary", "recording": rec, "robot": robot, "description": version,
+        "identity": "--robot" if robot else "none", "target": "odom", "topic": "/camera/camera_info",
+        "time": t, "time_end": t, "lookups": lookups, "ok": lookups - stale, "disconnected": 0, "stale": stale,
+        "future": 0,
+    }  # fmt: skip
+
+
+def test_a_description_updated_in_the_middle_of_a_day_is_a_version_regression(tmp_path: Path) -> None:
+    """r1 and r2 pass on v1 in the morning, fail on v2 that afternoon and the next day: v2
+    regressed from v1 on day 1 (the day-level rule never compared them: each day held two
+    versions), and the plot's counts are v2's alone."""
+    rows = []
+    for robot in ("r1", "r2"):
+        rows += [
+            _summary(robot, "v1", 8, 100, 0, f"{robot}_a"),
+            _summary(robot, "v2", 14, 100, 30, f"{robot}_b"),
+            _summary(robot, "v2", 24 + 8, 100, 30, f"{robot}_c"),
+        ]
+    table = _table(tmp_path / "t.parquet", rows)
+    r = cli("fleet-report", table, "--out", tmp_path / "rep", "--format", "json")
+    assert r.returncode == 1, r.stderr
+    doc = json.loads(r.stdout)
+    keys = ("subject", "since", "healthy_until", "before", "versions")
+    regressed = [tuple(x[k] for k in keys) for x in doc["regressed_descriptions"]]
+    assert regressed == [("v2", DAYS[0], DAYS[0], ["v1"], ["r1", "r2"])]
+    assert {x["subject"]: x["versions"] for x in doc["regressed_robots"]} == {"r1": ["v2"], "r2": ["v2"]}
+
+
+def test_unknown_robots_are_not_one_robot_and_a_table_given_twice_counts_once(tmp_path: Path) -> None:
+    rows = [
+        _summary(None, "(unknown)", 8, 100, 30, "a"),  # failing, unknown
+        _summary(None, "(unknown)", 24 + 8, 100, 0, "b"),  # passing the next day, another unknown robot
+        _summary("r1", "v1", 8, 100, 0, "c"),
+    ]
+    table = _table(tmp_path / "t.parquet", rows)
+    r = cli("fleet-report", table, table, "--out", tmp_path / "rep", "--format", "json")
+    doc = json.loads(r.stdout)
+    assert [x["subject"] for x in doc["regressed_robots"]] == ["(unknown) a"]  # b's pass does not hide a's failure
+    assert doc["recordings"] == 3 and sum(d["lookups"] for d in doc["days"]) == 300  # once, not twice
+    assert doc["repeated"] == ["a", "b", "c"]
+    twice = _table(tmp_path / "twice.parquet", rows + rows)  # tf-audit r0 r0: one table, the rows twice
+    doc = json.loads(cli("fleet-report", twice, "--out", tmp_path / "rep", "--format", "json").stdout)
+    assert sum(d["lookups"] for d in doc["days"]) == 300
+
+
+def test_a_fleet_with_nothing_audited_does_not_pass(tmp_path: Path) -> None:
+    crashed = {"kind": "unaudited", "recording": "r0", "identity": "none", "target": "odom", "detail": "BAG017: x"}
+    r = cli("fleet-report", _table(tmp_path / "t.parquet", [crashed]), "--out", tmp_path / "rep")
+    assert r.returncode == 1 and "the tables hold no audited lookup" in r.stdout
+    assert "1 recordings were not audited" in r.stdout
+
+
+def test_fleet_report_never_replaces_a_page_it_did_not_write(tmp_path: Path) -> None:
+    table = _table(tmp_path / "t.parquet", [_summary("r1", "v1", 8, 100, 0, "c")])
+    mine = tmp_path / "mydocs"
+    mine.mkdir()
+    (mine / "README.md").write_text("# my notes\n")
+    r = cli("fleet-report", table, "--out", mine)
+    assert r.returncode == 2 and "error[BAG021]" in r.stderr and (mine / "README.md").read_text() == "# my notes\n"
+    assert cli("fleet-report", table, "--out", tmp_path / "rep").returncode == 0
+    assert cli("fleet-report", table, "--out", tmp_path / "rep").returncode == 0  # its own page: rewritten
+
+
+def test_names_reach_the_terminal_escaped(tmp_path: Path) -> None:
+    name = "arm\x9b2J\u202ekcab"
+    table = _table(tmp_path / "t.parquet", [_summary(name, "v1", 8, 100, 30, "c")])
+    r = cli("fleet-report", table, "--out", tmp_path / "rep")
+    assert r.returncode == 1 and "\x9b" not in r.stdout and "\u202e" not in r.stdout
+    assert "arm\\x9b2J\\u202ekcab" in r.stdout
+
+
+@pytest.mark.parametrize("how", [["--jobs", "1"], ["--jobs", "2"], ["--window", "2 s"]])
+def test_a_path_the_system_refuses_is_one_error_on_every_engine(tmp_path: Path, how: list[str]) -> None:
+    good = tmp_path / "good"
+    scenario.write(ROBOT, good, (), 1.0)
+    long = tmp_path / ("a" * 300)  # ENAMETOOLONG: was a traceback, or a worker "that died"
+    r = cli("tf-audit", good, long, "--target", "odom", *how)
+    assert r.returncode == 2 and "Traceback" not in r.stderr and "error[BAG014]" in r.stderr, r.stderr
+    assert "File name too long" in r.stderr and f"== {good}" in r.stdout
+
+
+def test_a_version_is_judged_by_the_recordings_either_side_of_the_change(tmp_path: Path) -> None:
+    """One failed lookup on v1 nine days before the change does not hide v2's regression."""
+    rows = [_summary("r1", "v1", 8, 100, 1, "d0")]
+    rows += [_summary("r1", "v1", 24 * d + 8, 100, 0, f"d{d}") for d in range(1, 10)]
+    rows += [_summary("r1", "v2", 24 * d + 8, 100, 30, f"d{d}") for d in (10, 11)]
+    r = cli("fleet-report", _table(tmp_path / "t.parquet", rows), "--out", tmp_path / "rep", "--format", "json")
+    assert [x["subject"] for x in json.loads(r.stdout)["regressed_descriptions"]] == ["v2"]
+
+
+def test_a_rerun_that_audited_a_recording_wins_in_any_order(tmp_path: Path) -> None:
+    crashed = {"kind": "unaudited", "recording": "b", "identity": "none", "target": "odom", "detail": "BAG017: x"}
+    old = _table(tmp_path / "old.parquet", [_summary("r1", "v1", 8, 100, 0, "a"), crashed])
+    new = _table(tmp_path / "new.parquet", [_summary("r1", "v1", 9, 100, 0, "b")])
+    for order in ((old, new), (new, old)):
+        r = cli("fleet-report", *order, "--out", tmp_path / "rep", "--format", "json")
+        doc = json.loads(r.stdout)
+        assert r.returncode == 0 and doc["unaudited"] == [] and doc["recordings"] == 2, order
+
+
+def test_one_recording_with_jobs_runs_in_a_worker(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    bag = tmp_path / "r2_d3"  # the name _crash_on_r2_d3 kills
+    scenario.write(ROBOT, bag, (), 1.0)
+    monkeypatch.setattr(fleet_run, "run_task", _crash_on_r2_d3)
+    r = cli("tf-audit", bag, "--target", "odom", "--jobs", "2", "--out", tmp_path / "t.parquet")
+    assert r.returncode == 2 and "error[BAG017]" in r.stderr and "--jobs 1" in r.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r2_d3"]  # nothing audited: no table, no temporary file

@@ -80,3 +80,20 @@ def test_an_error_of_the_work_is_raised_not_taken_for_a_dead_worker() -> None:
     with pytest.raises(OSError, match="No space"):
         workers.each_in_processes(abs, [1, 2, 3, 4], 2, sink, crashed=lambda n: -n)
     assert len(written) == 1
+
+
+def _slow_crash(n: int) -> int:
+    """Item 0 dies after a while (others are quick): it must not be run again in every new pool."""
+    import os
+    import time
+
+    if n == 0:
+        time.sleep(0.3)
+        os.kill(os.getpid(), signal.SIGKILL)
+    return os.getpid()
+
+
+def test_an_item_that_crashes_late_is_isolated_after_two_strikes() -> None:
+    runs: list[int] = []
+    got = workers.map_in_processes(_slow_crash, list(range(40)), jobs=2, crashed=lambda n: runs.append(n) or -1)
+    assert got[0] == -1 and runs == [0] and all(p > 0 for p in got[1:])

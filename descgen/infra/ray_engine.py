@@ -89,7 +89,14 @@ def each_on_ray(
     tick = step or (lambda n: None)
     if address is not None:
         _reachable(address)
+    import signal
+    import threading
+
+    main = threading.current_thread() is threading.main_thread()
+    before = signal.getsignal(signal.SIGTERM) if main else None
     with _quiet(), contextlib.ExitStack() as stack:
+        if main and before is not None:  # ray.init puts its own handler in: the caller's comes back last
+            stack.callback(signal.signal, signal.SIGTERM, before)
         try:
             ray.init(
                 address=address or "local",  # "local": a new cluster, never one already running here

@@ -69,11 +69,12 @@ def each_in_processes(
 
     ``crashed``: what an item whose worker died gives. Without it, what a dead worker left is
     done again in this process (a worker killed for memory while others ran). With it, what is
-    left goes to a new pool of the same width; when a pool finishes nothing before it breaks, the
-    items first in line (those its workers held) run alone, each in a new worker, and one that
-    kills that worker too gives ``crashed(item)``: one item that crashes its process cannot end
-    the others' work, nor make them run one at a time. With ``crashed``, two or more jobs use
-    workers even on one CPU.
+    left goes to a new pool of the same width. A pool hands out items in order, so those first in
+    line when it broke were in its workers: each gets a strike, and one with two strikes runs
+    alone in a new worker; one that kills that worker too gives ``crashed(item)``. One item that
+    crashes its process cannot end the others' work, nor make them run one at a time. With
+    ``crashed`` and two or more jobs, work runs in workers even on one CPU or for one item.
+    Workers that cannot start at all (too many open files): the rest is done in this process.
     ``weight``: what ``step`` is given for an item (its bytes, say), 1 without it."""
     tick = step or (lambda n: None)
     finished: set[int] = set()
@@ -83,46 +84,54 @@ def each_in_processes(
         sink(i, result)
         tick(weight(items[i]) if weight else 1)
 
+    def here(left: Iterable[int]) -> None:
+        for i in left:
+            done(i, fn(items[i]))
+
     workers = min(jobs, len(items), _cpus())
-    if crashed is not None and jobs > 1 and len(items) > 1:
+    if crashed is not None and jobs > 1:
         workers = max(workers, 1)  # isolation is the point, even on one CPU
     elif workers <= 1:
-        for i, item in enumerate(items):
-            done(i, fn(item))
+        here(range(len(items)))
         return
     left = list(range(len(items)))
+    strikes: dict[int, int] = {}
     while left:
-        before = len(finished)
-        _in_workers(fn, items, left, workers, done)
+        ended = _in_workers(fn, items, left, workers, done)
         left = [i for i in left if i not in finished]
         if not left:
             return
-        if crashed is None:  # a worker killed for memory: the rest here, one by one
-            for i in left:
-                done(i, fn(items[i]))
+        if crashed is None or ended == UNSTARTED:  # killed for memory, or no worker at all: here
+            here(left)
             return
-        if len(finished) == before:  # the crash is among those first in line
-            suspects, left = left[: workers + 1], left[workers + 1 :]
-            for i in suspects:
-                _in_workers(fn, items, [i], 1, done)  # alone in a new worker
-                if i not in finished:
-                    done(i, crashed(items[i]))
+        for i in left[: workers + 1]:  # in the broken pool's workers (or next to go to one)
+            strikes[i] = strikes.get(i, 0) + 1
+        for i in [i for i in left if strikes.get(i, 0) >= 2]:
+            if _in_workers(fn, items, [i], 1, done) == UNSTARTED:
+                here([i])
+            elif i not in finished:
+                done(i, crashed(items[i]))
+        left = [i for i in left if i not in finished]
+
+
+DONE, BROKEN, UNSTARTED = "done", "broken", "unstarted"  # how a pool ended
 
 
 def _in_workers(
     fn: Callable[[T], R], items: Sequence[T], chosen: Iterable[int], workers: int, done: Callable[[int, R], None]
-) -> None:
-    """The chosen items on a new pool of ``workers``, until all are done or the pool breaks (a
-    worker died, or none could start): then it returns, and the caller sees what is left."""
+) -> str:
+    """The chosen items on a new pool of ``workers``, in their order, until all are done
+    (DONE), a worker dies (BROKEN) or none can start (UNSTARTED); the caller sees what is left."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start, initargs=(os.getpid(),))
     futures = {}
+    pool = None
     try:
         with sigterm_raises():
             try:
+                pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_start, initargs=(os.getpid(),))
                 # the workers are forked, and the pool's threads started, by the submits: a
                 # signal handled in the middle of that would be lost in a fork hook or leave a
                 # worker nobody knows of, so SIGINT and SIGTERM wait until they are started
@@ -131,13 +140,14 @@ def _in_workers(
                     for i in chosen:
                         futures[pool.submit(fn, items[i])] = i
             except (BrokenProcessPool, OSError):
-                return  # a worker could not start (too many open files): the caller does the rest
+                return UNSTARTED  # a worker could not start (too many open files)
             for future in as_completed(futures):
                 try:
                     result = future.result()  # fn's own error, an OSError included, goes on from here
                 except BrokenProcessPool:
-                    return  # a worker died: the caller does the rest
+                    return BROKEN
                 done(futures[future], result)
+            return DONE
     except BaseException:  # Ctrl-C, SIGTERM, or fn's own error: drop what has not started
         for future in futures:
             future.cancel()
@@ -145,7 +155,8 @@ def _in_workers(
             child.terminate()
         raise
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        if pool is not None:
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _cpus() -> int:

@@ -109,7 +109,7 @@ MAX_LABEL = 40
 
 def _label(name: str) -> str:
     """A name as a plot label: escaped, shortened, and never one matplotlib hides (a leading _)."""
-    text = name.encode("unicode_escape").decode("ascii")
+    text = "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in name)
     text = text if len(text) <= MAX_LABEL else text[: MAX_LABEL - 3] + "..."
     return " " + text if text.startswith("_") else text
 

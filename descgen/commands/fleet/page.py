@@ -109,8 +109,8 @@ def markdown(rollup: RollUp) -> str:
             "## Recordings of an unknown robot",
             "",
             mdtext(
-                "These hold no /robot_description and no --robot mapping matched them; their lookups are "
-                f"counted under the robot {'(unknown)'}:"
+                "These hold no /robot_description and no --robot mapping matched them; each is counted as "
+                "a robot of its own, named (unknown) and the recording:"
             ),
             "",
         ]

@@ -7,8 +7,8 @@ its share of failed lookups is above ``threshold`` (default 0: any failed lookup
 regressed when it is failing on its last day and on every day back to ``since``, and had a
 passing day before that; one failing on every day of the table is "failing since it was first
 seen"; a recording of no known robot is a robot of its own. A description version has
-regressed when a robot passed on the version before it (its recordings on that version since
-the last change) and failed from its first recording on the new one, even when the version
+regressed when a robot passed on its last recording on the version before it and failed on its
+first recording on the new one, even when the version
 changed in the middle of a day; since the earliest such recording's day. A recording given in
 two tables counts once.
 """
@@ -126,7 +126,11 @@ def _bad(path: Path, message: str) -> InputError:
     )
 
 
-SUMMARY_COLUMNS = ["kind", "recording", "robot", "description", "identity", "time", "lookups", *CLASSES, "detail"]
+SUMMARY_COLUMNS = [
+    *("kind", "recording", "robot", "description", "identity", "topic", "time", "lookups"),
+    *CLASSES,
+    "detail",
+]
 LOOKUP_COLUMNS = ["recording", "robot", "description", "topic", "frame", "outcome", "time"]
 
 
@@ -174,23 +178,36 @@ class _Row:
 def roll_up(paths: list[Path], threshold: float = 0.0) -> RollUp:
     days: dict[tuple[str, str], Day] = {}
     rows: list[_Row] = []
-    seen: dict[str, int] = {}  # recording -> the table it was taken from (its place in the list)
-    repeated: set[str] = set()
-    unaudited: list[tuple[str, str]] = []
     unidentified: set[str] = set()
     models: set[str] = set()
-    for k, path in enumerate(paths):
-        table = _read(path, SUMMARY_COLUMNS, ("summary", "unaudited")).to_pylist()
+    # a recording is taken from the first table that audited it (a re-run's table beats the run
+    # that could not audit it, in any order), and a row given twice counts once
+    tables = [_read(path, SUMMARY_COLUMNS, ("summary", "unaudited")).to_pylist() for path in paths]
+    seen: dict[str, int] = {}  # recording -> the table it is taken from (its place in the list)
+    for k, table in enumerate(tables):
+        for row in table:
+            if row["kind"] == "summary":
+                seen.setdefault(row["recording"] or "", k)
+    repeated = {
+        rec for k, table in enumerate(tables) for row in table if seen.get(rec := row["recording"] or "", k) != k
+    }
+    unaudited: dict[str, str] = {}
+    taken: set[tuple[Any, ...]] = set()
+    for k, table in enumerate(tables):
         for row in table:
             rec = row["recording"] or ""
-            if seen.setdefault(rec, k) != k:  # the same recording in two tables counts once
-                repeated.add(rec)
+            if row["kind"] == "unaudited":
+                if rec not in seen:  # audited in no table
+                    unaudited.setdefault(rec, row["detail"] or "")
+                    if row["identity"] == "none":
+                        unidentified.add(rec)
                 continue
+            key = (rec, row["topic"], row["description"], row["time"], row["lookups"])
+            if seen[rec] != k or key in taken:
+                continue
+            taken.add(key)
             if row["identity"] == "none":
                 unidentified.add(rec)
-            if row["kind"] == "unaudited":
-                unaudited.append((rec, row["detail"] or ""))
-                continue
             if row["identity"] == "/robot_description":
                 models.add(row["robot"] or UNKNOWN)
             # a recording of an unknown robot is a robot of its own: unknown units are not one unit
@@ -221,8 +238,8 @@ def roll_up(paths: list[Path], threshold: float = 0.0) -> RollUp:
             bucket[c] += r.failed[c]
     return RollUp(
         ordered,
-        len(seen),
-        sorted(unaudited),
+        len(seen) + len(unaudited),
+        sorted(unaudited.items()),
         sorted(unidentified),
         robots,
         versions,
@@ -255,6 +272,9 @@ def _robots(days: list[Day], rows: list[_Row], threshold: float) -> list[Regress
     by_robot: dict[str, list[Day]] = defaultdict(list)
     for d in days:
         by_robot[d.robot].append(d)
+    rows_of: dict[str, list[_Row]] = defaultdict(list)
+    for r in rows:
+        rows_of[r.robot].append(r)
     for robot, seq in by_robot.items():
         if seq[-1].rate <= threshold:
             continue
@@ -263,7 +283,7 @@ def _robots(days: list[Day], rows: list[_Row], threshold: float) -> list[Regress
             k -= 1
         healthy = seq[k - 1] if k > 0 else None
         since = seq[k].day
-        later = [r for r in rows if r.robot == robot and _day(r.time) >= since]
+        later = [r for r in rows_of[robot] if _day(r.time) >= since]
         failing = [r.version for r in later if r.rate > threshold] or [r.version for r in later]
         out.append(
             Regression(
@@ -278,8 +298,8 @@ def _robots(days: list[Day], rows: list[_Row], threshold: float) -> list[Regress
 
 
 def _versions(rows: list[_Row], threshold: float) -> list[Regression]:
-    """A version whose robot passed on the version before it and failed from its first recording
-    on it: each robot's summary rows in time order, consecutive rows of one version taken
+    """A version whose robot passed on its last recording on the version before it and failed on
+    its first recording on the new one: each robot's summary rows in time order, consecutive rows of one version taken
     together (a version changed in the middle of a day is compared too). A robot that passed on
     the new version first and failed later has regressed, but not with the version."""
     found: dict[str, Regression] = {}
@@ -292,8 +312,10 @@ def _versions(rows: list[_Row], threshold: float) -> list[Regression]:
     for (robot_a, old, before), (robot_b, new, after) in itertools.pairwise(runs):
         if robot_a != robot_b or UNKNOWN in (old, new):
             continue
-        first = [r for r in after if r.recording == after[0].recording]  # its first recording on the version
-        if _rate(before) <= threshold < _rate(first):
+        # the last recording on the old version and the first on the new: the change between them
+        last = [r for r in before if r.recording == before[-1].recording]
+        first = [r for r in after if r.recording == after[0].recording]
+        if _rate(last) <= threshold < _rate(first):
             since, until = _day(after[0].time), _day(before[-1].time)
             reg = found.get(new)
             if reg is None or since < reg.since:  # the earliest transition names the dates
@@ -313,31 +335,25 @@ def _rate(rows: list[_Row]) -> float:
 
 def _failing_lookups(paths: list[Path], robots: list[Regression], seen: dict[str, int]) -> None:
     """For each regressed robot, the lookups that fail since the day it started: topic, frame,
-    class, how many and the first. Counted by Arrow over the lookup rows (a fleet's tables hold
-    millions), never as Python rows."""
+    class, how many and the first. One group-by per table, by Arrow (a fleet's tables hold
+    millions of lookup rows), by robot (or recording, for a robot of no name) and day."""
     import pyarrow.compute as pc
 
+    since = {r.subject: r.since for r in robots}
     counts: dict[tuple[str, str, str, str], list[int]] = {}
     for k, path in enumerate(paths):
         tbl = _read(path, LOOKUP_COLUMNS, ("lookup",))
-        mine_here = pc.is_in(tbl["recording"], value_set=_strings([r for r, at in seen.items() if at == k]))
-        for r in robots:
-            if r.since == NO_DAY:
+        tbl = tbl.filter(pc.is_in(tbl["recording"], value_set=_strings([r for r, at in seen.items() if at == k])))
+        tbl = tbl.append_column("day", pc.divide(tbl["time"], 86400 * 1_000_000_000))  # whole days (ints)
+        keys = ["robot", "recording", "topic", "frame", "outcome", "day"]
+        for g in tbl.group_by(keys).aggregate([("time", "count"), ("time", "min")]).to_pylist():
+            subject = g["robot"] or f"{UNKNOWN} {g['recording']}"
+            if subject not in since or g["day"] is None or _day(int(g["day"] * 86400) * 1_000_000_000) < since[subject]:
                 continue
-            start = int(datetime.strptime(r.since, "%Y-%m-%d").replace(tzinfo=UTC).timestamp()) * 1_000_000_000
-            if r.subject.startswith(UNKNOWN + " "):  # an unknown robot: its one recording
-                mine = pc.and_(pc.is_null(tbl["robot"]), pc.equal(tbl["recording"], r.subject[len(UNKNOWN) + 1 :]))
-            else:
-                mine = pc.equal(tbl["robot"], r.subject)
-            picked = tbl.filter(pc.and_(pc.and_(mine, mine_here), pc.greater_equal(tbl["time"], start)))
-            if not picked.num_rows:
-                continue
-            grouped = picked.group_by(["topic", "frame", "outcome"]).aggregate([("time", "count"), ("time", "min")])
-            for row in grouped.to_pylist():
-                key = (r.subject, row["topic"] or "", row["frame"] or "", row["outcome"] or "")
-                c = counts.setdefault(key, [0, int(row["time_min"])])
-                c[0] += int(row["time_count"])
-                c[1] = min(c[1], int(row["time_min"]))
+            key = (subject, g["topic"] or "", g["frame"] or "", g["outcome"] or "")
+            c = counts.setdefault(key, [0, int(g["time_min"])])
+            c[0] += int(g["time_count"])
+            c[1] = min(c[1], int(g["time_min"]))
     for r in robots:
         rows = [(k[1], k[2], k[3], v[0], v[1]) for k, v in counts.items() if k[0] == r.subject]
         rows.sort(key=lambda x: (-x[3], x[4]))

@@ -55,16 +55,20 @@ def run_task(task: Task, kwargs: dict[str, Any]) -> TaskResult:
         return _crashed(task, f"the audit raised {type(exc).__name__}: {' '.join(str(exc).split())[:300]}")
 
 
-def _crashed(task: Task, why: str = "its worker process died (killed, or a crash in a library)") -> TaskResult:
+DIED = "its worker process died (killed, or a crash in a library)"
+
+
+def _crashed(task: Task, why: str = DIED) -> TaskResult:
     w = task.window
     where = "" if w is None or w.start is None else f" (the window from {w.start / 1e9:.3f} s)"
+    hint = (
+        "audit it alone with --jobs 1 to see how it ends; any other recording is reported"
+        if not why.startswith("the audit raised")
+        else "a defect of descgen or of a library it reads with: report it with this message; "
+        "any other recording is reported"
+    )
     return None, (
-        BAG017.finding(
-            f"the audit of this recording{where} crashed: {why}",
-            "audit it alone (descgen tf-audit PATH) to see why; the other recordings are reported",
-            "file",
-            Where(str(task.path)),
-        ),
+        BAG017.finding(f"the audit of this recording{where} crashed: {why}", hint, "file", Where(str(task.path))),
     )
 
 
@@ -98,7 +102,7 @@ def audit_fleet(
     tasks: list[Task] = []
     for i, p in enumerate(paths):
         try:
-            cut = _plan(Path(p), window_ns, kwargs)
+            cut = _plan(Path(p), window_ns, kwargs, outcomes[i].bytes)
         except InputError as exc:
             outcomes[i].findings = exc.findings
             if each:
@@ -156,7 +160,7 @@ def _dispatch(
 
     if not tasks:
         return
-    if engine == "local" and (jobs <= 1 or len(tasks) <= 1):
+    if engine == "local" and jobs <= 1:
         for k, task in enumerate(tasks):  # in this process: each recording's messages on the terminal
             sink(k, run_task(task, kwargs | {"show_progress": show_progress}))
         return
@@ -182,12 +186,12 @@ def _window_start(part: tuple[Task, TaskResult]) -> int:
     return -(2**63) if w is None or w.start is None else w.start
 
 
-def _plan(path: Path, window_ns: int | None, kwargs: dict[str, Any]) -> list[Window | None]:
+def _plan(path: Path, window_ns: int | None, kwargs: dict[str, Any], size: int) -> list[Window | None]:
     if window_ns is None:
         return [None]
     start, end = time_range(path)
     horizon = int(kwargs.get("cache_ns", 10_000_000_000)) + int(kwargs.get("wait_ns", 0))
-    return windows.plan(start, end, max(window_ns, windows.MIN_WINDOW_NS), horizon)
+    return windows.plan(start, end, max(window_ns, windows.MIN_WINDOW_NS), horizon, size or None)
 
 
 def _finish(outcome: Outcome, given: str, got: list[tuple[Task, TaskResult]], kwargs: dict[str, Any]) -> bool:

@@ -73,9 +73,13 @@ def rows(outcome: Outcome, target: str, mappings: tuple[Mapping, ...]) -> dict[s
             "identity": ident.source,
             "target": target,
         }
-        for name, _ in COLUMNS:
+        for name, kind in COLUMNS:
             v = values.get(name)
-            cols[name].append(_text(v) if isinstance(v, str) else v)
+            if isinstance(v, str):
+                v = _text(v)
+            elif kind == "timestamp" and v is not None and not -(2**63) <= v < 2**63:
+                v = None  # a log time past 2262 (rosbag2 stores a uint64): no timestamp holds it
+            cols[name].append(v)
 
     rep = outcome.report
     if rep is None:

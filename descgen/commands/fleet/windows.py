@@ -21,15 +21,20 @@ MIN_WINDOW_NS = 1_000_000_000  # a window shorter than a second is all horizon
 MAX_WINDOWS = 10_000  # a recording's metadata may claim any span: the windows widen instead
 
 
-def plan(start_ns: int, end_ns: int, length_ns: int, horizon_ns: int) -> list[Window | None]:
+MIN_WINDOW_BYTES = 2_000  # a window of less holds a handful of messages: metadata that says otherwise is wrong
+
+
+def plan(start_ns: int, end_ns: int, length_ns: int, horizon_ns: int, size: int | None = None) -> list[Window | None]:
     """The windows of a recording whose metadata says it was logged from ``start_ns`` to
     ``end_ns``: [None] (one pass) when it is no longer than one window. The first window is open
     to the left and the last to the right, so a message outside what the metadata says is still
-    looked up, once."""
+    looked up, once. ``size`` (bytes on disk) bounds the count as well: a span the metadata gets
+    wrong (decades of a few seconds' data) gives few windows, not thousands of empty ones."""
     span = end_ns - start_ns
-    if span <= length_ns:
+    most = MAX_WINDOWS if size is None else max(1, min(MAX_WINDOWS, size // MIN_WINDOW_BYTES))
+    if span <= length_ns or most == 1:
         return [None]
-    length = max(length_ns, -(-span // MAX_WINDOWS))
+    length = max(length_ns, -(-span // most))
     cuts: list[int | None] = list(range(start_ns + length, end_ns, length))
     return [Window(a, b, horizon_ns) for a, b in itertools.pairwise([None, *cuts, None])]
 
