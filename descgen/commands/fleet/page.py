@@ -103,31 +103,26 @@ def markdown(rollup: RollUp) -> str:
     if rollup.unaudited:
         out += ["", "## Recordings not audited", "", "| recording | why |", "|---|---|"]
         out += [f"| {mdcell(r)} | {mdcell(w)} |" for r, w in rollup.unaudited]
-    if rollup.unidentified:
-        out += [
-            "",
-            "## Recordings of an unknown robot",
-            "",
-            mdtext(
-                "These hold no /robot_description and no --robot mapping matched them; each is counted as "
-                "a robot of its own, named (unknown) and the recording:"
-            ),
-            "",
-        ]
-        out += [f"- {mdtext(r)}" for r in rollup.unidentified]
-    if rollup.models:
-        out += [
-            "",
-            "## Robots named by their URDF",
-            "",
-            mdtext(
-                "These names are a URDF's <robot name>, the model: every unit of the model is one robot here, "
-                "and a regression of one unit is diluted by the others. Name the units with tf-audit --robot:"
-            ),
-            "",
-        ]
-        out += [f"- {mdtext(m)}" for m in rollup.models]
-    if rollup.repeated:
-        out += ["", "## Recordings in more than one table", "", mdtext("Counted once, from the first table:"), ""]
-        out += [f"- {mdtext(r)}" for r in rollup.repeated]
+    out += _listed(
+        "Recordings of an unknown robot",
+        "These hold no /robot_description and no --robot mapping matched them; each is counted as "
+        "a robot of its own, named (unknown) and the recording:",
+        rollup.unidentified,
+    )
+    out += _listed(
+        "Robots named by their URDF",
+        "These names are a URDF's <robot name>, the model: every unit of the model is one robot here, "
+        "and a regression of one unit is diluted by the others. Name the units with tf-audit --robot:",
+        rollup.models,
+    )
+    out += _listed(
+        "Recordings in more than one table", "Counted once, from the first table that audited it:", rollup.repeated
+    )
     return "\n".join(out) + "\n"
+
+
+def _listed(title: str, said: str, names: list[str]) -> list[str]:
+    """A section of the page listing names from recordings (nothing when there are none)."""
+    if not names:
+        return []
+    return ["", f"## {title}", "", mdtext(said), "", *(f"- {mdtext(n)}" for n in names)]
