@@ -13,7 +13,7 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import TYPE_CHECKING, NoReturn
 
 from descgen import __version__
 from descgen.cli import arguments as types
@@ -353,7 +353,7 @@ def _cmd_frames(args: argparse.Namespace) -> int:
 
 
 def _cmd_tf_audit(args: argparse.Namespace) -> int:
-    from descgen.commands.fleet.run import audit_fleet
+    from descgen.commands.fleet.audit import tf_audit
     from descgen.infra.progress import wanted
 
     if args.address is not None and args.engine != "ray":
@@ -367,33 +367,22 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
                 )
             ]
         )
-    topics = tuple(args.topic or ())
-    show = wanted(args.format == "text")
     mappings = tuple(args.robot or ())
-    options = {"topics": topics, "wait_ns": args.wait, "max_age_ns": args.max_age}
-    run = {"engine": args.engine, "jobs": args.jobs, "address": args.address, "window_ns": args.window}
-    if args.out is None:
-        outcomes = audit_fleet(args.bag, args.target, show_progress=show, **run, **options)
-    else:
-        from descgen.commands.fleet.table import rows, schema, table
-        from descgen.infra.workers import sigterm_raises
-        from descgen.write.findings_table import TableFile, check_out, pyarrow_modules
-
-        pa, _ = pyarrow_modules()
-        check_out(args.out, args.force)
-        # SIGTERM (a CI runner's timeout) ends the run as Ctrl-C does: the table's temporary file goes
-        with sigterm_raises(), TableFile(args.out, schema(pa), args.force) as out:
-
-            def each(i: int, outcome: Any) -> None:
-                out.write(table(pa, rows(outcome, args.target, mappings)))
-                if outcome.report is not None:
-                    outcome.report.failures = []  # written: one recording's rows are held at a time
-
-            outcomes = audit_fleet(
-                args.bag, args.target, show_progress=show, each=each, keep_failures=True, **run, **options
-            )
-            if not any(o.report is not None for o in outcomes):  # nothing audited: nothing written
-                raise InputError([f for o in outcomes for f in o.findings])
+    outcomes = tf_audit(
+        args.bag,
+        args.target,
+        out=args.out,
+        force=args.force,
+        mappings=mappings,
+        show_progress=wanted(args.format == "text"),
+        engine=args.engine,
+        jobs=args.jobs,
+        address=args.address,
+        window_ns=args.window,
+        topics=tuple(args.topic or ()),
+        wait_ns=args.wait,
+        max_age_ns=args.max_age,
+    )
     errors = [f for o in outcomes for f in o.findings]
     if errors and not any(o.report is not None for o in outcomes):
         raise InputError(errors)  # nothing to report: exit 2, as for one recording
@@ -408,16 +397,10 @@ def _cmd_tf_audit(args: argparse.Namespace) -> int:
 
 
 def _cmd_fleet_report(args: argparse.Namespace) -> int:
-    from descgen.commands.fleet.page import MARK, PLOTS, markdown, text
-    from descgen.commands.fleet.rollup import roll_up
-    from descgen.write.fleet_report import check_folder, write_report
+    from descgen.commands.fleet.page import text
+    from descgen.commands.fleet.report import fleet_report
 
-    check_folder(args.out, ["README.md", *PLOTS], MARK)  # before reading a fleet's tables
-    rollup = roll_up(args.findings, args.threshold / 100)
-    rates: dict[str, list[tuple[str, float]]] = {}
-    for d in rollup.days:
-        rates.setdefault(d.robot, []).append((d.day, d.rate))
-    page = write_report(args.out, markdown(rollup), rates, rollup.by_version, PLOTS)
+    rollup, page = fleet_report(args.findings, args.out, args.threshold / 100)
     if args.format == "json":
         sys.stdout.write(json.dumps(rollup.as_dict() | {"page": str(page)}, indent=2) + "\n")
     else:
@@ -436,16 +419,8 @@ def _cmd_tf_scenario(args: argparse.Namespace) -> int:
         from descgen.render import render_package
 
         urdf = render_package(robot, args.spec, only=[f"urdf/{robot.name}.urdf"])[f"urdf/{robot.name}.urdf"]
-    start = args.start if args.start is not None else None
-    counts = write(
-        robot,
-        args.out,
-        tuple(args.fault or ()),
-        args.duration,
-        args.storage,
-        **({"start_ns": start} if start is not None else {}),
-        description=urdf,
-    )
+    start = {} if args.start is None else {"start_ns": args.start}
+    counts = write(robot, args.out, tuple(args.fault or ()), args.duration, args.storage, description=urdf, **start)
     print(f"wrote {args.out} ({args.storage}): " + ", ".join(f"{t} {n}" for t, n in counts.items()))
     return EXIT_OK
 

@@ -12,6 +12,7 @@ import os
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import Any
 
 Step = Callable[[int], None]
 
@@ -28,14 +29,39 @@ def _nothing(n: int = 1) -> None:
 
 
 @contextmanager
-def counting(total: int | None, what: str, unit: str, show: bool, scale: bool = False) -> Iterator[Step]:
+def counting(total: int | None, what: str, unit: str, show: bool) -> Iterator[Step]:
     """A function to call with each step's count (``step(1)``); a bar of ``total`` steps on
     stderr while the block runs when ``show``, else a function that does nothing. The bar is
-    cleared when the block ends, so the command's own report follows on a clean line. ``scale``:
-    the count in k, M, G (bytes read shown as MB and MB/s)."""
+    cleared when the block ends, so the command's own report follows on a clean line."""
     if not show:
         yield _nothing
         return
+    with _bar(total, what, unit, scale=False) as bar:
+        yield bar.update
+
+
+@contextmanager
+def reading(total_bytes: int | None, items: int, what: str, show: bool) -> Iterator[Step]:
+    """A bar of bytes read (MB and MB/s) that also counts the items done: ``step(nbytes)`` as
+    each item is done. Nothing when not ``show``, as :func:`counting`."""
+    if not show:
+        yield _nothing
+        return
+    with _bar(total_bytes, what, "B", scale=True) as bar:
+        done = [0]
+
+        def item(n: int = 0) -> None:
+            done[0] += 1
+            bar.set_postfix_str(f"{done[0]}/{items} done", refresh=False)
+            bar.update(n)
+
+        yield item
+
+
+@contextmanager
+def _bar(total: int | None, what: str, unit: str, scale: bool) -> Iterator[Any]:
+    """tqdm's bar on stderr, closed (and cleared) when the block ends. ``scale``: the count in
+    k, M, G (bytes as MB and MB/s)."""
     from tqdm import tqdm
 
     # no monitor thread: a bar is drawn from the working thread, and a thread alive while
@@ -51,32 +77,7 @@ def counting(total: int | None, what: str, unit: str, show: bool, scale: bool = 
         unit_scale=scale,
         unit_divisor=1000,
     )
-
-    def step(n: int = 1) -> None:
-        bar.update(n)
-
-    step.bar = bar  # type: ignore[attr-defined]  # for reading(): the items done beside the bytes
     try:
-        yield step
+        yield bar
     finally:
         bar.close()
-
-
-@contextmanager
-def reading(total_bytes: int | None, items: int, what: str, show: bool) -> Iterator[Step]:
-    """A bar of bytes read (MB and MB/s) that also counts the items done: ``step(nbytes)`` as
-    each item is done. Nothing when not ``show``, as :func:`counting`."""
-    with counting(total_bytes, what, "B", show, scale=True) as step:
-        if not show:
-            yield step
-            return
-        done = [0]
-        bar = getattr(step, "bar", None)
-
-        def item(n: int = 0) -> None:
-            done[0] += 1
-            if bar is not None:
-                bar.set_postfix_str(f"{done[0]}/{items} done", refresh=False)
-            step(n)
-
-        yield item

@@ -23,7 +23,6 @@ from descgen.commands.fleet.run import Outcome
 from descgen.commands.tf.bagaudit import OUTCOMES
 
 FORMAT = "descgen-findings/1"  # in the file's metadata: fleet-report refuses other tables
-KINDS = ("lookup", "summary", "unaudited")
 
 COLUMNS: tuple[tuple[str, str], ...] = (
     ("kind", "string"),

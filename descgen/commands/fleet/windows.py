@@ -65,6 +65,5 @@ def join(parts: list[Report], examples: int) -> Report | None:
         out.results.extend(p.results)
         out.failures.extend(p.failures)
         out.frames |= p.frames
-        out.bytes_read += p.bytes_read
     out.descriptions = parts[0].descriptions if parts else []
     return out

@@ -100,7 +100,6 @@ class Report:
     descriptions: list[Description] = field(default_factory=list)
     frames: set[str] = field(default_factory=set)  # every frame named in what was read
     boundary: tuple[str, str] = ("", "")  # the buffer's digest at a window's start and end
-    bytes_read: int = 0
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -385,7 +384,6 @@ def audit(
             # must read nothing: rosbags reads every connection when given none)
             for _, log_ns, raw in reader.messages(connections=static, stop=start) if static else ():
                 replay.transforms(log_ns, ts.deserialize_cdr(raw, "tf2_msgs/msg/TFMessage"), True)
-                report.bytes_read += len(raw)
         total = None if window else sum(int(getattr(c, "msgcount", 0) or 0) for c in read) or None
         at_start = at_end = ""
         with counting(total, path.name, "msg", show_progress) as step:
@@ -396,7 +394,6 @@ def audit(
                 if not at_end and last is not None and log_ns >= last:
                     at_end = replay.digest()
                 topic = conn.topic
-                report.bytes_read += len(raw)
                 if topic in TF_TOPICS:
                     replay.transforms(log_ns, ts.deserialize_cdr(raw, conn.msgtype), topic == "/tf_static")
                 elif first <= log_ns and (last is None or log_ns < last):
