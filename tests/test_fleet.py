@@ -40,7 +40,7 @@ URDF_V1 = (ROOT / "generated/warehouse_arm_description/urdf/warehouse_arm.urdf")
 URDF_V2 = URDF_V1.replace("</robot>", "<!-- camera bracket, revision 2 -->\n</robot>")
 V1, V2 = (hashlib.sha256(u.encode()).hexdigest() for u in (URDF_V1, URDF_V2))
 NS, MS = 1_000_000_000, 1_000_000
-DAY1 = 1_793_865_600 * NS  # 2026-11-05T00:00:00Z
+DAY1 = 1_793_836_800 * NS  # 2026-11-05T00:00:00Z (20,762 days of 86,400 s)
 DAYS = ("2026-11-05", "2026-11-06", "2026-11-07", "2026-11-08")
 
 # (robot, day) -> planted faults; day 3 and 4 of r3 and r4 run description v2
@@ -585,3 +585,18 @@ def test_one_recording_with_jobs_runs_in_a_worker(tmp_path: Path, monkeypatch: p
     r = cli("tf-audit", bag, "--target", "odom", "--jobs", "2", "--out", tmp_path / "t.parquet")
     assert r.returncode == 2 and "error[BAG017]" in r.stderr and "--jobs 1" in r.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r2_d3"]  # nothing audited: no table, no temporary file
+
+
+def test_a_lookup_without_a_frame_is_named_so_on_the_page(tmp_path: Path) -> None:
+    """A header with an empty frame_id (joint states looked up by --topic) on the page: "``"
+    would be two backticks, not an empty code span."""
+    from .test_markdown_escaping import text_of
+
+    failed = _summary("r1", "v1", 8, 10, 10, "a") | {"stale": 0, "disconnected": 10, "ok": 0}
+    lookup = {"kind": "lookup", "recording": "a", "robot": "r1", "description": "v1", "identity": "--robot",
+              "target": "odom", "topic": "/joint_states", "frame": "", "outcome": "disconnected",
+              "time": DAY1 + 8 * 3600 * NS}  # fmt: skip
+    r = cli("fleet-report", _table(tmp_path / "t.parquet", [failed, lookup]), "--out", tmp_path / "rep")
+    assert r.returncode == 1
+    line = next(x for x in (tmp_path / "rep" / "README.md").read_text().splitlines() if "/joint_states" in x)
+    assert text_of(line) == "/joint_states in an empty frame_id: 1 disconnected since 2026-11-05 08:00:00 UTC"

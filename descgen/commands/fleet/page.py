@@ -80,7 +80,8 @@ def markdown(rollup: RollUp) -> str:
     for r in rollup.robots:
         out += [f"- {mdtext(_robot_line(r))}"]
         for topic, frame, cls, n, first in r.lookups:
-            out.append(f"  - {mdspan(topic)} in {mdspan(frame)}: {n} {mdtext(cls)} since {mdtext(first)} UTC")
+            where = mdspan(frame) if frame else "an empty frame\\_id"  # `` would be no code span
+            out.append(f"  - {mdspan(topic)} in {where}: {n} {mdtext(cls)} since {mdtext(first)} UTC")
     for r in rollup.versions:
         out.append(f"- {mdtext(_version_line(r))}")
     out += [
